@@ -1,0 +1,90 @@
+"""The turtle world: which turtles exist, how they are named, spawned, killed and reset.
+
+TurtleFrame knows nothing of ROS; the node turns its errors into failed service calls.
+"""
+from __future__ import annotations
+
+import random
+from dataclasses import dataclass
+from typing import Dict, List, Optional, Tuple
+
+from turtlesim.canvas import RGB, Canvas
+from turtlesim.constants import CENTRE
+from turtlesim.names import name_error
+from turtlesim.turtle import StepResult, Turtle
+
+
+class TurtleError(Exception):
+    """A request the world refuses (duplicate, unknown or invalid name, bad numbers)."""
+
+
+@dataclass
+class TurtleUpdate:
+    """One turtle after one tick: what the node publishes for it."""
+
+    name: str
+    turtle: Turtle
+    result: StepResult
+    colour: RGB
+
+
+class TurtleFrame:
+    """All turtles and the canvas they share."""
+
+    def __init__(self, canvas: Canvas, rng: Optional[random.Random] = None) -> None:
+        self.canvas = canvas
+        self.turtles: Dict[str, Turtle] = {}
+        self._id_counter = 0
+        self._rng = rng or random.Random()
+
+    def has(self, name: str) -> bool:
+        return name in self.turtles
+
+    def spawn(self, name: str, x: float, y: float, theta: float) -> str:
+        """Add a turtle and return its name; an empty name picks the next free `turtleN`."""
+        if not name:
+            while True:
+                self._id_counter += 1
+                name = "turtle%d" % self._id_counter
+                if name not in self.turtles:
+                    break
+        elif name in self.turtles:
+            raise TurtleError("A turtled named [%s] already exists" % name)
+        else:
+            problem = name_error(name)
+            if problem:
+                raise TurtleError(problem)
+        try:
+            turtle = Turtle(x, y, theta, icon=self._rng.randrange(len(self.canvas.icons)))
+        except ValueError as err:
+            raise TurtleError(str(err)) from None
+        self.turtles[name] = turtle
+        return name
+
+    def kill(self, name: str) -> None:
+        if name not in self.turtles:
+            raise TurtleError("Tried to kill turtle [%s], which does not exist" % name)
+        del self.turtles[name]
+
+    def clear(self, background: RGB) -> None:
+        self.canvas.fill(background)
+
+    def reset(self, background: RGB) -> Tuple[List[str], str]:
+        """Remove every turtle, spawn turtle1 at the centre, clear. Returns (removed, new name)."""
+        removed = list(self.turtles)
+        self.turtles.clear()
+        self._id_counter = 0
+        first = self.spawn("", CENTRE, CENTRE, 0.0)
+        self.clear(background)
+        return removed, first
+
+    def update(self, dt: float, now: float) -> List[TurtleUpdate]:
+        """Advance every turtle one tick, draw their paths, read their colour sensors."""
+        updates = [TurtleUpdate(name, t, t.step(dt, now), (0, 0, 0)) for name, t in self.turtles.items()]
+        self.canvas.draw((u.turtle.pen, u.result.segments) for u in updates)
+        for u in updates:
+            u.colour = self.canvas.colour_at(u.turtle.x, u.turtle.y)
+        return updates
+
+    def render(self):
+        return self.canvas.render(self.turtles.values())

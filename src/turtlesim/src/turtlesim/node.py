@@ -1,0 +1,241 @@
+"""The turtlesim node: wires TurtleFrame to ROS topics, services and parameters.
+
+Interfaces match upstream turtlesim (per turtle: cmd_vel, pose, color_sensor,
+set_pen, teleport_absolute, teleport_relative; global: clear, reset, spawn, kill;
+private params background_r/g/b). Beyond upstream: ~image (the rendered canvas,
+published only while someone subscribes) and ~snapshot (writes a PNG).
+"""
+from __future__ import annotations
+
+import os
+import threading
+import time
+from typing import Dict
+
+import rospy
+from geometry_msgs.msg import Twist
+from sensor_msgs.msg import Image
+from std_srvs.srv import Empty, EmptyResponse, Trigger, TriggerResponse
+
+from turtlesim.canvas import RGB, Canvas, rgb888_bytes
+from turtlesim.constants import BACKGROUND_PARAMS, CENTRE, DEFAULT_BACKGROUND_RGB, TICK, WALL_WARNING
+from turtlesim.frame import TurtleError, TurtleFrame, TurtleUpdate
+from turtlesim.msg import Color, Pose
+from turtlesim.srv import (Kill, KillResponse, SetPen, SetPenResponse, Spawn, SpawnResponse,
+                           TeleportAbsolute, TeleportAbsoluteResponse, TeleportRelative,
+                           TeleportRelativeResponse)
+from turtlesim.ticker import Ticker
+
+
+class TurtleInterface:
+    """The ROS face of one turtle, under the namespace of its name."""
+
+    def __init__(self, name: str, sim: "TurtlesimNode") -> None:
+        self.name = name
+        self._sim = sim
+        self.pose_pub = rospy.Publisher(name + "/pose", Pose, queue_size=1)
+        self.colour_pub = rospy.Publisher(name + "/color_sensor", Color, queue_size=1)
+        self.cmd_sub = rospy.Subscriber(name + "/cmd_vel", Twist, self._on_cmd_vel, queue_size=1)
+        self.services = [
+            rospy.Service(name + "/set_pen", SetPen, self._on_set_pen),
+            rospy.Service(name + "/teleport_absolute", TeleportAbsolute, self._on_teleport_absolute),
+            rospy.Service(name + "/teleport_relative", TeleportRelative, self._on_teleport_relative),
+        ]
+
+    def publish(self, update: TurtleUpdate) -> None:
+        t = update.turtle
+        try:
+            self.pose_pub.publish(Pose(x=t.x, y=t.y, theta=t.theta,
+                                       linear_velocity=t.linear_velocity, angular_velocity=t.w))
+            self.colour_pub.publish(Color(*update.colour))
+        except rospy.ROSException:
+            pass  # killed between the tick and the publish
+
+    def shutdown(self) -> None:
+        self.pose_pub.unregister()
+        self.colour_pub.unregister()
+        self.cmd_sub.unregister()
+        for service in self.services:
+            service.shutdown("turtle killed")
+
+    def _on_cmd_vel(self, msg: Twist) -> None:
+        now = time.monotonic()
+        try:
+            self._sim.with_turtle(self.name, lambda t: t.command(msg.linear.x, msg.linear.y, msg.angular.z, now))
+        except (ValueError, TurtleError) as err:
+            rospy.logwarn_throttle(1.0, "%s: %s" % (self.name, err))
+
+    def _on_set_pen(self, req):
+        self._sim.call(self.name, lambda t: t.set_pen(req.r, req.g, req.b, req.width, req.off))
+        return SetPenResponse()
+
+    def _on_teleport_absolute(self, req):
+        self._sim.call(self.name, lambda t: t.teleport_absolute(req.x, req.y, req.theta))
+        return TeleportAbsoluteResponse()
+
+    def _on_teleport_relative(self, req):
+        self._sim.call(self.name, lambda t: t.teleport_relative(req.linear, req.angular))
+        return TeleportRelativeResponse()
+
+
+class TurtlesimNode:
+    """The simulator process: frame, ROS interfaces, the 62.5 Hz ticker and the image outputs."""
+
+    def __init__(self) -> None:
+        self.lock = threading.RLock()
+        for param, value in zip(BACKGROUND_PARAMS, DEFAULT_BACKGROUND_RGB):
+            if not rospy.has_param("~" + param):
+                rospy.set_param("~" + param, value)
+        self.frame = TurtleFrame(Canvas(self.background()))
+        self.interfaces: Dict[str, TurtleInterface] = {}
+        self.image_pub = rospy.Publisher("~image", Image, queue_size=1)
+        self.image_period = 1.0 / max(float(rospy.get_param("~image_rate", 10.0)), 0.1)
+        self.snapshot_dir = os.path.expanduser(rospy.get_param(
+            "~snapshot_dir", os.path.join(os.environ.get("ROS_HOME", "~/.ros"), "turtlesim")))
+        self._snapshots = 0
+        self._services = [
+            rospy.Service("clear", Empty, self._on_clear),
+            rospy.Service("reset", Empty, self._on_reset),
+            rospy.Service("spawn", Spawn, self._on_spawn),
+            rospy.Service("kill", Kill, self._on_kill),
+            rospy.Service("~snapshot", Trigger, self._on_snapshot),
+        ]
+        self._add_turtle("", CENTRE, CENTRE, 0.0)
+        self.ticker = Ticker(TICK, self.tick, name="turtlesim-tick")
+        self.image_thread = threading.Thread(target=self._stream_images, name="turtlesim-image", daemon=True)
+
+    def start(self) -> None:
+        self.ticker.start()
+        self.image_thread.start()
+
+    def stop(self) -> None:
+        self.ticker.stop()
+
+    # -- helpers used by the turtle interfaces ------------------------------------------
+    def with_turtle(self, name: str, action) -> None:
+        with self.lock:
+            turtle = self.frame.turtles.get(name)
+            if turtle is None:
+                raise TurtleError("turtle [%s] does not exist" % name)
+            action(turtle)
+
+    def call(self, name: str, action) -> None:
+        """Run a service action on a turtle; refusals become failed calls with the reason."""
+        try:
+            self.with_turtle(name, action)
+        except (ValueError, TurtleError) as err:
+            rospy.logerr(str(err))
+            raise rospy.ServiceException(str(err))
+
+    def background(self) -> RGB:
+        """The background_r/g/b params, each forced into 0..255."""
+        values = []
+        for param, default in zip(BACKGROUND_PARAMS, DEFAULT_BACKGROUND_RGB):
+            value = rospy.get_param("~" + param, default)
+            try:
+                values.append(min(max(int(value), 0), 255))
+            except (TypeError, ValueError):
+                rospy.logwarn("~%s=%r is not a number; using %d" % (param, value, default))
+                values.append(default)
+        return tuple(values)
+
+    # -- the heartbeat --------------------------------------------------------------------
+    def tick(self) -> None:
+        with self.lock:
+            updates = self.frame.update(TICK, time.monotonic())
+            targets = [(self.interfaces.get(u.name), u) for u in updates]
+        for iface, update in targets:
+            if update.result.clamped_from is not None:
+                rospy.logwarn(WALL_WARNING % update.result.clamped_from)
+            if iface is not None:
+                iface.publish(update)
+
+    def render(self):
+        with self.lock:
+            return self.frame.render()
+
+    def _stream_images(self) -> None:
+        while not rospy.is_shutdown():
+            started = time.monotonic()
+            if self.image_pub.get_num_connections() > 0:
+                image = self.render()
+                msg = Image(height=image.height(), width=image.width(), encoding="rgb8",
+                            is_bigendian=0, step=image.width() * 3, data=rgb888_bytes(image))
+                msg.header.stamp = rospy.Time.now()
+                msg.header.frame_id = "turtlesim"
+                try:
+                    self.image_pub.publish(msg)
+                except rospy.ROSException:
+                    return
+            time.sleep(max(0.0, self.image_period - (time.monotonic() - started)))
+
+    # -- turtles ---------------------------------------------------------------------------
+    def _add_turtle(self, name: str, x: float, y: float, theta: float) -> str:
+        with self.lock:
+            real_name = self.frame.spawn(name, x, y, theta)
+        self._attach(real_name)
+        return real_name
+
+    def _attach(self, name: str) -> None:
+        """Give a freshly spawned turtle its topics and services."""
+        with self.lock:
+            t = self.frame.turtles.get(name)
+        if t is None:
+            return
+        rospy.loginfo("Spawning turtle [%s] at x=[%f], y=[%f], theta=[%f]" % (name, t.x, t.y, t.theta))
+        iface = TurtleInterface(name, self)
+        with self.lock:
+            if self.frame.has(name) and name not in self.interfaces:
+                self.interfaces[name] = iface
+                return
+        iface.shutdown()
+
+    # -- global services -------------------------------------------------------------------
+    def _on_spawn(self, req):
+        try:
+            return SpawnResponse(self._add_turtle(req.name, req.x, req.y, req.theta))
+        except TurtleError as err:
+            rospy.logerr(str(err))
+            raise rospy.ServiceException(str(err))
+
+    def _on_kill(self, req):
+        try:
+            with self.lock:
+                self.frame.kill(req.name)
+                iface = self.interfaces.pop(req.name, None)
+        except TurtleError as err:
+            rospy.logerr(str(err))
+            raise rospy.ServiceException(str(err))
+        if iface is not None:
+            iface.shutdown()
+        return KillResponse()
+
+    def _on_clear(self, _req):
+        rospy.loginfo("Clearing turtlesim.")
+        background = self.background()
+        with self.lock:
+            self.frame.clear(background)
+        return EmptyResponse()
+
+    def _on_reset(self, _req):
+        rospy.loginfo("Resetting turtlesim.")
+        background = self.background()
+        with self.lock:
+            removed, first = self.frame.reset(background)
+            dropped = [self.interfaces.pop(n) for n in removed if n in self.interfaces]
+        for iface in dropped:
+            iface.shutdown()
+        self._attach(first)
+        return EmptyResponse()
+
+    def _on_snapshot(self, _req):
+        try:
+            os.makedirs(self.snapshot_dir, exist_ok=True)
+            self._snapshots += 1
+            path = os.path.join(self.snapshot_dir, "turtlesim-%s-%d-%03d.png"
+                                % (time.strftime("%Y%m%d-%H%M%S"), os.getpid(), self._snapshots))
+            if not self.render().save(path, "PNG"):
+                return TriggerResponse(success=False, message="could not write %s" % path)
+            return TriggerResponse(success=True, message=os.path.abspath(path))
+        except OSError as err:
+            return TriggerResponse(success=False, message="snapshot failed: %s" % err)

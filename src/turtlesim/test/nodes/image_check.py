@@ -1,0 +1,67 @@
+#!/usr/bin/env python3
+"""~image streams the rendered canvas only while subscribed; ~snapshot writes a PNG of it."""
+import os
+import unittest
+
+os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+
+import rosgraph
+import rospy
+import rostest
+from PyQt5.QtGui import QImage
+from PyQt5.QtWidgets import QApplication
+from sensor_msgs.msg import Image
+from std_srvs.srv import Trigger
+
+from turtlesim.constants import DEFAULT_BACKGROUND_RGB
+from turtlesim.srv import SetPen, TeleportAbsolute
+from turtlesim.testing import Latest
+
+
+def pixel(msg: Image, x: int, y: int):
+    i = y * msg.step + x * 3
+    return tuple(bytearray(msg.data[i:i + 3]))
+
+
+class TurtlesimImage(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.app = QApplication.instance() or QApplication([])
+        rospy.init_node("turtlesim_image_check")
+        rospy.wait_for_service("/turtlesim/snapshot", 20)
+
+    def test_image_shows_background_paths_and_turtle(self):
+        teleport = rospy.ServiceProxy("/turtle1/teleport_absolute", TeleportAbsolute)
+        rospy.ServiceProxy("/turtle1/set_pen", SetPen)(255, 0, 0, 5, 0)
+        teleport(1.0, 1.0, 0.0)
+        teleport(4.0, 1.0, 0.0)
+        image = Latest("/turtlesim/image", Image)
+        msg = image.wait(lambda m: pixel(m, 90, 454) == (255, 0, 0), timeout=10)
+        self.assertIsNotNone(msg, "the red path should show in the image")
+        self.assertEqual((msg.width, msg.height, msg.encoding, msg.step), (500, 500, "rgb8", 1500))
+        self.assertEqual(pixel(msg, 5, 5), DEFAULT_BACKGROUND_RGB)
+        self.assertNotEqual(pixel(msg, 180, 454), DEFAULT_BACKGROUND_RGB, "the turtle icon is drawn")
+        image.close()
+
+    def test_image_topic_is_advertised_and_streams(self):
+        master = rosgraph.Master("/image_check")
+        self.assertIn("/turtlesim/image", dict(master.getSystemState()[0]))
+        image = Latest("/turtlesim/image", Image)
+        self.assertIsNotNone(image.wait(timeout=10))
+        image.close()
+
+    def test_snapshot_writes_a_png_and_answers_its_path(self):
+        answer = rospy.ServiceProxy("/turtlesim/snapshot", Trigger)()
+        self.assertTrue(answer.success, answer.message)
+        self.assertTrue(os.path.isfile(answer.message), answer.message)
+        self.assertTrue(answer.message.endswith(".png"))
+        png = QImage(answer.message)
+        self.assertEqual((png.width(), png.height()), (500, 500))
+        corner = png.pixelColor(2, 2)
+        self.assertEqual((corner.red(), corner.green(), corner.blue()), DEFAULT_BACKGROUND_RGB)
+        second = rospy.ServiceProxy("/turtlesim/snapshot", Trigger)()
+        self.assertNotEqual(second.message, answer.message, "each snapshot gets its own file")
+
+
+if __name__ == "__main__":
+    rostest.rosrun("turtlesim", "turtlesim_image", TurtlesimImage)

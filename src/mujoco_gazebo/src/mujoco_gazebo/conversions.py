@@ -1,0 +1,36 @@
+"""geometry_msgs <-> frames conversions (ROS quaternions are x, y, z, w; ours are w, x, y, z)."""
+from __future__ import annotations
+
+from geometry_msgs.msg import Pose as PoseMsg, Twist as TwistMsg
+
+from .frames import Pose, Twist
+
+
+def pose_from_msg(msg: PoseMsg) -> Pose:
+    p, q = msg.position, msg.orientation
+    return Pose([p.x, p.y, p.z], [q.w, q.x, q.y, q.z])
+
+
+def pose_to_msg(pose: Pose) -> PoseMsg:
+    msg = PoseMsg()
+    msg.position.x, msg.position.y, msg.position.z = (float(v) for v in pose.position)
+    w, x, y, z = (float(v) for v in pose.orientation)
+    msg.orientation.w, msg.orientation.x, msg.orientation.y, msg.orientation.z = w, x, y, z
+    return msg
+
+
+def twist_from_msg(msg: TwistMsg) -> Twist:
+    return Twist([msg.linear.x, msg.linear.y, msg.linear.z], [msg.angular.x, msg.angular.y, msg.angular.z])
+
+
+def twist_to_msg(twist: Twist) -> TwistMsg:
+    msg = TwistMsg()
+    msg.linear.x, msg.linear.y, msg.linear.z = (float(v) for v in twist.linear)
+    msg.angular.x, msg.angular.y, msg.angular.z = (float(v) for v in twist.angular)
+    return msg
+
+
+def pose_msg_is_finite(msg: PoseMsg) -> bool:
+    import math
+    p, q = msg.position, msg.orientation
+    return all(math.isfinite(v) for v in (p.x, p.y, p.z, q.x, q.y, q.z, q.w))

@@ -40,6 +40,34 @@ def engine_rtf(urdf: Path, lidar_body: str = "", seconds: float = 20.0) -> float
     return seconds / (time.perf_counter() - t0)
 
 
+def camera_render_ms(urdf: Path, frames: int = 30) -> str:
+    """Median time to render one RRBot camera frame (default 320x240), or why it cannot."""
+    sys.path.insert(0, str(ROOT / "src" / "mujoco_gazebo" / "src"))
+    from mujoco_gazebo import database
+    from mujoco_gazebo.camera import BodyCamera, CameraConfig, RenderUnavailable
+    from mujoco_gazebo.frames import Pose
+    from mujoco_gazebo.world import World
+    import mujoco
+    w = World()
+    w.spawn("ground_plane", database.model_sdf("ground_plane"), Pose())
+    w.spawn("robot", urdf.read_text(), Pose())
+    bid = mujoco.mj_name2id(w.model, mujoco.mjtObj.mjOBJ_BODY, "robot::camera_link")
+    camera = BodyCamera(CameraConfig())
+    try:
+        camera.render(w.model, w.data, bid)  # GL context, shaders
+        times = []
+        for _ in range(frames):
+            w.step(33)
+            t = time.perf_counter()
+            camera.render(w.model, w.data, bid)
+            times.append(time.perf_counter() - t)
+        return "%.1f ms (%s)" % (1000 * sorted(times)[frames // 2], camera.backend)
+    except RenderUnavailable as exc:
+        return "unavailable: %s" % exc
+    finally:
+        camera.close()
+
+
 def free_port() -> int:
     with socket.socket() as s:
         s.bind(("localhost", 0))
@@ -117,6 +145,7 @@ def main() -> None:
     tb = ROOT / "src" / "turtlebot3_description" / "urdf" / "turtlebot3_burger.urdf.xacro"
     print("engine only, 1 ms step: RRBot max real-time factor %.0fx" % engine_rtf(rr))
     print("engine only, 1 ms step: Burger + 5 Hz 360-ray scan max real-time factor %.0fx" % engine_rtf(tb, "base_scan"))
+    print("engine only: RRBot camera frame 320x240, median render time %s" % camera_render_ms(rr))
     flat = run_node("0")
     print("node, flat out, Burger with /scan subscribed: real-time factor %.1fx (scan %.1f Hz wall, "
           "model_states %.0f Hz wall), gazebo CPU %.0f%% of a core" % (flat["rtf"], flat["scan_hz"], flat["states_hz"], flat["cpu"]))

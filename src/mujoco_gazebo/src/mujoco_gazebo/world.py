@@ -13,6 +13,7 @@ import numpy as np
 
 from .frames import Pose, Twist, all_finite, quat_conj, rotate, twist_relative, twist_to_world
 from .sdf import SdfError, sdf_to_mjcf
+from .appearance import urdf_link_colours
 from .urdf import PluginSpec, UrdfError, inspect_urdf
 
 WORLD_FRAMES = ("", "world", "map")
@@ -98,12 +99,14 @@ class World:
         fmt = detect_format(xml)
         plugins: List[PluginSpec] = []
         friction: Dict[str, float] = {}
+        colours: Dict[str, Tuple[float, float, float, float]] = {}
         joints: List[str] = []
         try:
             if fmt == "urdf":
                 info = inspect_urdf(xml)
                 child = mujoco.MjSpec.from_string(xml)
                 fixed, plugins, friction = info.fixed_to_world, info.plugins, info.friction
+                colours = urdf_link_colours(xml)  # cosmetic: what the camera sees
                 joints = [j for j, t in info.joints.items() if t in ("revolute", "continuous", "prismatic")]
                 model_offset = Pose()
             else:
@@ -118,6 +121,9 @@ class World:
         if root is None:
             raise WorldError("model %s has no bodies" % name)
         for body in child.bodies:
+            if body.name in colours:
+                for geom in body.geoms:
+                    geom.rgba = list(colours[body.name])
             if body.name in friction:
                 for geom in body.geoms:
                     geom.friction = [friction[body.name], geom.friction[1], geom.friction[2]]

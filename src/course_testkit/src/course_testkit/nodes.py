@@ -1,0 +1,51 @@
+"""Start a node the way `rosrun PKG TYPE ARGS...` would, as a child process we own."""
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+from typing import IO, List, Optional, Sequence, Union
+
+import roslib.packages
+
+
+def find_executable(pkg: str, node_type: str) -> str:
+    """The path rosrun would run for PKG TYPE; a clear error when there is none."""
+    paths = roslib.packages.find_node(pkg, node_type)
+    if not paths:
+        raise FileNotFoundError("no executable [%s] in package [%s] (is it built and chmod +x?)"
+                                % (node_type, pkg))
+    return paths[0]
+
+
+class NodeProcess:
+    """A child node with its own process group, so stop() also ends anything it started."""
+
+    def __init__(self, command: Sequence[str], stdin: Union[int, IO, None] = None,
+                 log_path: Optional[str] = None) -> None:
+        self.command: List[str] = list(command)
+        self._log = open(log_path, "wb") if log_path else subprocess.DEVNULL
+        self.proc = subprocess.Popen(self.command, stdin=stdin, stdout=self._log, stderr=subprocess.STDOUT,
+                                     start_new_session=True)
+
+    @classmethod
+    def rosrun(cls, pkg: str, node_type: str, args: Sequence[str] = (), **kwargs) -> "NodeProcess":
+        return cls([find_executable(pkg, node_type)] + list(args), **kwargs)
+
+    def running(self) -> bool:
+        return self.proc.poll() is None
+
+    def stop(self, timeout: float = 10.0) -> Optional[int]:
+        """SIGINT (like Ctrl+C), then SIGKILL if the group does not go away."""
+        if self.proc.poll() is None:
+            try:
+                os.killpg(self.proc.pid, signal.SIGINT)
+                self.proc.wait(timeout)
+            except subprocess.TimeoutExpired:
+                os.killpg(self.proc.pid, signal.SIGKILL)
+                self.proc.wait(5)
+            except ProcessLookupError:
+                pass
+        if self._log is not subprocess.DEVNULL:
+            self._log.close()
+        return self.proc.returncode

@@ -1,0 +1,1 @@
+"""The arch drawer of Computer Exercise 1 ("Writing our first node")."""

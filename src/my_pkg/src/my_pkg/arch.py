@@ -1,0 +1,46 @@
+"""Drawing an arch: how far the turtle has turned, and when to stop.
+
+The turtle drives forward while turning left; the arch is done when the heading has
+turned through the requested angle (within a threshold). Turning is tracked as the sum
+of wrapped heading changes, so 2*pi (a full circle) is not mistaken for 0.
+"""
+from __future__ import annotations
+
+import math
+from typing import Optional
+
+
+class ArchError(ValueError):
+    """The requested arch angle is not a number in [0, 2*pi]."""
+
+
+def check_angle(angle: float) -> float:
+    if not math.isfinite(angle) or not 0.0 <= angle <= 2.0 * math.pi + 1e-6:
+        raise ArchError("Angle must be in range [0, 2PI], got %r" % angle)
+    return min(angle, 2.0 * math.pi)
+
+
+def wrap(angle: float) -> float:
+    """Into [-pi, pi), like turtlesim's orientation."""
+    return angle - 2.0 * math.pi * math.floor((angle + math.pi) / (2.0 * math.pi))
+
+
+class ArchProgress:
+    """Accumulates the heading change from the first pose and says when the target is reached."""
+
+    def __init__(self, target: float, threshold: float = 0.02) -> None:
+        self.target = check_angle(target)
+        self.threshold = threshold
+        self.turned = 0.0
+        self._last: Optional[float] = None
+
+    def update(self, theta: float) -> bool:
+        """Feed a heading; True once the turtle has turned to within the threshold of the target."""
+        if self._last is not None:
+            self.turned += wrap(theta - self._last)
+        self._last = theta
+        return self.done
+
+    @property
+    def done(self) -> bool:
+        return self.target - self.turned < self.threshold

@@ -12,7 +12,7 @@ from geometry_msgs.msg import Twist
 
 from mybot_teleop_core.commands import TeleopCommands
 from mybot_teleop_core.keys import KeyDecoder
-from mybot_teleop_core.terminal import NotATerminal, RawTerminal
+from turtlesim.keyboard import NotATerminal, RawTerminal
 
 
 def main() -> int:

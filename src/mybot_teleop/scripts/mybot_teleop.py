@@ -13,7 +13,7 @@ from geometry_msgs.msg import Twist
 
 from mybot_teleop_core.commands import ON_KEY, TeleopCommands, Velocity
 from mybot_teleop_core.keys import KeyDecoder
-from mybot_teleop_core.terminal import NotATerminal, RawTerminal
+from turtlesim.keyboard import NotATerminal, RawTerminal
 
 
 def param_or_default(name, default):

@@ -4,6 +4,9 @@ from __future__ import annotations
 
 import os
 import pty
+import select
+import subprocess
+import time
 from typing import Optional, Sequence
 
 from course_testkit.nodes import NodeProcess, find_executable
@@ -14,12 +17,39 @@ ARROWS = {"up": b"\x1b[A", "down": b"\x1b[B", "right": b"\x1b[C", "left": b"\x1b
 class PtyKeyboard:
     """Runs a command with a pseudo-terminal as stdin; press() types into it."""
 
-    def __init__(self, command: Sequence[str], log_path: Optional[str] = None) -> None:
+    def __init__(self, command: Sequence[str], log_path: Optional[str] = None, env: Optional[dict] = None,
+                 output_on_pty: bool = False) -> None:
+        """`output_on_pty`: the node also writes to the terminal, and read_until() reads what it printed."""
         self.master, slave = pty.openpty()
+        self.output = b""
         try:
-            self.node = NodeProcess(command, stdin=slave, log_path=log_path)
+            self.node = NodeProcess(command, stdin=slave, log_path=log_path, env=env,
+                                    stdout=slave if output_on_pty else None)
         finally:
             os.close(slave)
+
+    def read_until(self, text: bytes, timeout: float = 10.0) -> bool:
+        """Collect what the node printed on the terminal until `text` shows up (True) or `timeout` passes."""
+        deadline = time.monotonic() + timeout
+        while text not in self.output and time.monotonic() < deadline:
+            ready, _, _ = select.select([self.master], [], [], 0.05)
+            if not ready:
+                continue
+            try:
+                chunk = os.read(self.master, 4096)
+            except OSError:  # the node closed the terminal
+                break
+            if not chunk:
+                break
+            self.output += chunk
+        return text in self.output
+
+    def wait(self, timeout: float = 10.0) -> Optional[int]:
+        """The node's exit code once it exits by itself, or None if it is still running after `timeout`."""
+        try:
+            return self.node.proc.wait(timeout)
+        except subprocess.TimeoutExpired:
+            return None
 
     @classmethod
     def rosrun(cls, pkg: str, node_type: str, args: Sequence[str] = (), **kwargs) -> "PtyKeyboard":

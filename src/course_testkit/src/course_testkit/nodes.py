@@ -22,11 +22,13 @@ class NodeProcess:
     """A child node with its own process group, so stop() also ends anything it started."""
 
     def __init__(self, command: Sequence[str], stdin: Union[int, IO, None] = None,
-                 log_path: Optional[str] = None) -> None:
+                 log_path: Optional[str] = None, env: Optional[dict] = None,
+                 stdout: Union[int, IO, None] = None) -> None:
+        """Output goes to `stdout` if given, else to `log_path` (or nowhere)."""
         self.command: List[str] = list(command)
         self._log = open(log_path, "wb") if log_path else subprocess.DEVNULL
-        self.proc = subprocess.Popen(self.command, stdin=stdin, stdout=self._log, stderr=subprocess.STDOUT,
-                                     start_new_session=True)
+        self.proc = subprocess.Popen(self.command, stdin=stdin, stdout=self._log if stdout is None else stdout,
+                                     stderr=subprocess.STDOUT, env=env, start_new_session=True)
 
     @classmethod
     def rosrun(cls, pkg: str, node_type: str, args: Sequence[str] = (), **kwargs) -> "NodeProcess":

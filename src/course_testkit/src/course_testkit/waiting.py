@@ -7,7 +7,7 @@ from typing import Callable, TypeVar
 T = TypeVar("T")
 
 
-def wait_for(condition: Callable[[], T], timeout: float, interval: float = 0.02) -> T:
+def wait_for(condition: Callable[[], T], timeout: float = 5.0, interval: float = 0.02) -> T:
     """Poll condition() until it returns something truthy; return it, or the last value on timeout."""
     deadline = time.monotonic() + timeout
     value = condition()

@@ -13,7 +13,8 @@ from std_srvs.srv import Empty
 from turtlesim.constants import CENTRE, DEFAULT_BACKGROUND_RGB, WORLD_SIZE
 from turtlesim.msg import Color, Pose
 from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute, TeleportRelative
-from turtlesim.testing import Latest, RosoutWatcher, wait_until
+from course_testkit.recorders import RosoutRecorder, TopicRecorder
+from course_testkit.waiting import wait_for
 
 
 def twist(x=0.0, y=0.0, z=0.0) -> Twist:
@@ -27,7 +28,7 @@ class TurtlesimApi(unittest.TestCase):
     def setUpClass(cls):
         rospy.init_node("turtlesim_api_check")
         rospy.wait_for_service("/reset", 20)
-        cls.rosout = RosoutWatcher()
+        cls.rosout = RosoutRecorder()
         cls.reset = rospy.ServiceProxy("/reset", Empty)
         cls.clear = rospy.ServiceProxy("/clear", Empty)
         cls.spawn = rospy.ServiceProxy("/spawn", Spawn)
@@ -38,15 +39,15 @@ class TurtlesimApi(unittest.TestCase):
             rospy.set_param("/turtlesim/background_" + p, v)
         self.reset()
         rospy.wait_for_service("/turtle1/teleport_absolute", 5)
-        self.pose = Latest("/turtle1/pose", Pose)
-        self.colour = Latest("/turtle1/color_sensor", Color)
+        self.pose = TopicRecorder("/turtle1/pose", Pose)
+        self.colour = TopicRecorder("/turtle1/color_sensor", Color)
         self.cmd = rospy.Publisher("/turtle1/cmd_vel", Twist, queue_size=1)
-        self.assertTrue(wait_until(lambda: self.cmd.get_num_connections() > 0, 5))
+        self.assertTrue(wait_for(lambda: self.cmd.get_num_connections() > 0, 5))
         self.assertIsNotNone(self.pose.wait())
 
     def tearDown(self):
-        self.pose.close()
-        self.colour.close()
+        self.pose.unregister()
+        self.colour.unregister()
         self.cmd.unregister()
 
     def teleport(self, x, y, theta, turtle="turtle1"):
@@ -109,7 +110,7 @@ class TurtlesimApi(unittest.TestCase):
         p = self.pose.wait(lambda p: p.x == 0.0)
         self.assertIsNotNone(p)
         self.assertAlmostEqual(p.y, 5.0, places=3)
-        self.assertIsNotNone(self.rosout.wait_for("Oh no! I hit the wall! (Clamping from [x=", level=4))
+        self.assertTrue(self.rosout.wait_for_text("Oh no! I hit the wall! (Clamping from [x=", level=4))
 
     def test_pen_and_colour_sensor(self):
         self.teleport(2.0, 2.0, 0.0)
@@ -142,14 +143,14 @@ class TurtlesimApi(unittest.TestCase):
             self.spawn(1.0, 1.0, 0.0, "leonardo")
         with self.assertRaisesRegex(rospy.ServiceException, "invalid turtle name"):
             self.spawn(1.0, 1.0, 0.0, "9 lives")
-        leo = Latest("/leonardo/pose", Pose)
+        leo = TopicRecorder("/leonardo/pose", Pose)
         p = leo.wait()
         self.assertAlmostEqual(p.x, 2.0, places=4)
-        leo.close()
+        leo.unregister()
         self.kill("leonardo")
         master = rosgraph.Master("/api_check")
-        self.assertTrue(wait_until(lambda: "/leonardo/pose" not in dict(master.getSystemState()[0])))
-        self.assertTrue(wait_until(lambda: "/leonardo/set_pen" not in dict(master.getSystemState()[2])))
+        self.assertTrue(wait_for(lambda: "/leonardo/pose" not in dict(master.getSystemState()[0])))
+        self.assertTrue(wait_for(lambda: "/leonardo/set_pen" not in dict(master.getSystemState()[2])))
         with self.assertRaisesRegex(rospy.ServiceException, "which does not exist"):
             self.kill("leonardo")
         self.assertEqual(self.spawn(1.0, 1.0, 0.0, "").name, "turtle3")
@@ -161,17 +162,17 @@ class TurtlesimApi(unittest.TestCase):
         self.assertIsNotNone(self.colour.wait(lambda c: (c.r, c.g, c.b) == DEFAULT_BACKGROUND_RGB))
         self.clear()
         self.assertIsNotNone(self.colour.wait(lambda c: (c.r, c.g, c.b) == (255, 0, 0)))
-        self.assertIsNotNone(self.rosout.wait_for("Clearing turtlesim."))
+        self.assertTrue(self.rosout.wait_for_text("Clearing turtlesim."))
 
     def test_reset_removes_turtles_and_recentres(self):
         self.spawn(1.0, 1.0, 0.0, "donatello")
         self.teleport(1.0, 9.0, 1.0)
         self.reset()
         master = rosgraph.Master("/api_check")
-        self.assertTrue(wait_until(lambda: "/donatello/pose" not in dict(master.getSystemState()[0])))
+        self.assertTrue(wait_for(lambda: "/donatello/pose" not in dict(master.getSystemState()[0])))
         p = self.pose.wait(lambda p: abs(p.x - CENTRE) < 1e-4 and abs(p.y - CENTRE) < 1e-4 and p.theta == 0.0)
         self.assertIsNotNone(p)
-        self.assertIsNotNone(self.rosout.wait_for("Resetting turtlesim."))
+        self.assertTrue(self.rosout.wait_for_text("Resetting turtlesim."))
 
 
 if __name__ == "__main__":

@@ -10,7 +10,8 @@ from std_srvs.srv import Empty
 
 from turtlesim.msg import Pose
 from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute, TeleportRelative
-from turtlesim.testing import Latest, RosoutWatcher, wait_until
+from course_testkit.recorders import RosoutRecorder, TopicRecorder
+from course_testkit.waiting import wait_for
 
 
 def finite(p: Pose) -> bool:
@@ -22,10 +23,10 @@ class TurtlesimErrors(unittest.TestCase):
     def setUpClass(cls):
         rospy.init_node("turtlesim_errors_check")
         rospy.wait_for_service("/turtle1/teleport_absolute", 20)
-        cls.rosout = RosoutWatcher()
-        cls.pose = Latest("/turtle1/pose", Pose)
+        cls.rosout = RosoutRecorder()
+        cls.pose = TopicRecorder("/turtle1/pose", Pose)
         cls.cmd = rospy.Publisher("/turtle1/cmd_vel", Twist, queue_size=10)
-        assert wait_until(lambda: cls.cmd.get_num_connections() > 0, 10)
+        assert wait_for(lambda: cls.cmd.get_num_connections() > 0, 10)
 
     def assert_alive_and_finite(self):
         count = self.pose.count
@@ -39,7 +40,7 @@ class TurtlesimErrors(unittest.TestCase):
             t = Twist()
             t.linear.x, t.angular.z = 1.0, bad
             self.cmd.publish(t)
-        self.assertIsNotNone(self.rosout.wait_for("cmd_vel rejected: non-finite", level=4))
+        self.assertTrue(self.rosout.wait_for_text("cmd_vel rejected: non-finite", level=4))
         self.assert_alive_and_finite()
 
     def test_non_finite_teleports_fail_with_a_message(self):
@@ -72,7 +73,7 @@ class TurtlesimErrors(unittest.TestCase):
         rospy.set_param("/turtlesim/background_r", 999)
         rospy.set_param("/turtlesim/background_g", "green")
         rospy.ServiceProxy("/clear", Empty)()
-        self.assertIsNotNone(self.rosout.wait_for("~background_g='green' is not a number", level=4))
+        self.assertTrue(self.rosout.wait_for_text("~background_g='green' is not a number", level=4))
         rospy.set_param("/turtlesim/background_r", 69)
         rospy.set_param("/turtlesim/background_g", 86)
         self.assert_alive_and_finite()

@@ -15,7 +15,7 @@ from std_srvs.srv import Trigger
 
 from turtlesim.constants import DEFAULT_BACKGROUND_RGB
 from turtlesim.srv import SetPen, TeleportAbsolute
-from turtlesim.testing import Latest
+from course_testkit.recorders import TopicRecorder
 
 
 def pixel(msg: Image, x: int, y: int):
@@ -35,20 +35,20 @@ class TurtlesimImage(unittest.TestCase):
         rospy.ServiceProxy("/turtle1/set_pen", SetPen)(255, 0, 0, 5, 0)
         teleport(1.0, 1.0, 0.0)
         teleport(4.0, 1.0, 0.0)
-        image = Latest("/turtlesim/image", Image)
+        image = TopicRecorder("/turtlesim/image", Image)
         msg = image.wait(lambda m: pixel(m, 90, 454) == (255, 0, 0), timeout=10)
         self.assertIsNotNone(msg, "the red path should show in the image")
         self.assertEqual((msg.width, msg.height, msg.encoding, msg.step), (500, 500, "rgb8", 1500))
         self.assertEqual(pixel(msg, 5, 5), DEFAULT_BACKGROUND_RGB)
         self.assertNotEqual(pixel(msg, 180, 454), DEFAULT_BACKGROUND_RGB, "the turtle icon is drawn")
-        image.close()
+        image.unregister()
 
     def test_image_topic_is_advertised_and_streams(self):
         master = rosgraph.Master("/image_check")
         self.assertIn("/turtlesim/image", dict(master.getSystemState()[0]))
-        image = Latest("/turtlesim/image", Image)
+        image = TopicRecorder("/turtlesim/image", Image)
         self.assertIsNotNone(image.wait(timeout=10))
-        image.close()
+        image.unregister()
 
     def test_snapshot_writes_a_png_and_answers_its_path(self):
         answer = rospy.ServiceProxy("/turtlesim/snapshot", Trigger)()

@@ -9,8 +9,9 @@ import rostest
 from geometry_msgs.msg import Twist
 
 from turtlesim.msg import Pose
-from turtlesim.pty_driver import ARROW, PtyProcess
-from turtlesim.testing import Latest, wait_until
+from course_testkit.keyboard import PtyKeyboard
+from course_testkit.recorders import TopicRecorder
+from course_testkit.waiting import wait_for
 
 NODE = sys.argv[1:3] if len(sys.argv) >= 3 and not sys.argv[1].startswith("__") else ["turtlesim", "turtle_teleop_key"]
 
@@ -24,42 +25,42 @@ class TeleopKey(unittest.TestCase):
     def setUp(self):
         self.cmds = []
         self.sub = rospy.Subscriber("/turtle1/cmd_vel", Twist, self.cmds.append)
-        self.teleop = PtyProcess(["rosrun"] + NODE)
+        self.teleop = PtyKeyboard(["rosrun"] + NODE, output_on_pty=True)
 
     def tearDown(self):
-        self.teleop.close()
+        self.teleop.stop()
         self.sub.unregister()
 
     def press(self, key: str) -> Twist:
         before = len(self.cmds)
-        self.teleop.type(ARROW[key])
-        self.assertTrue(wait_until(lambda: len(self.cmds) > before, 5), "no Twist after %s" % key)
+        self.teleop.press(key)
+        self.assertTrue(wait_for(lambda: len(self.cmds) > before, 5), "no Twist after %s" % key)
         return self.cmds[-1]
 
     def test_arrows_publish_scaled_twists_and_q_quits(self):
         self.assertTrue(self.teleop.read_until(b"Use arrow keys to move the turtle. 'q' to quit."),
                         self.teleop.output)
         self.assertIn(b"Reading from keyboard", self.teleop.output)
-        self.assertTrue(wait_until(lambda: self.sub.get_num_connections() > 0, 10))
+        self.assertTrue(wait_for(lambda: self.sub.get_num_connections() > 0, 10))
         up = self.press("up")
         self.assertEqual((up.linear.x, up.angular.z), (2.0, 0.0))
         self.assertEqual(self.press("down").linear.x, -2.0)
         self.assertEqual(self.press("left").angular.z, 2.0)
         self.assertEqual(self.press("right").angular.z, -2.0)
-        self.teleop.type(b"x")  # unbound keys publish nothing
+        self.teleop.press("x")  # unbound keys publish nothing
         count = len(self.cmds)
-        self.teleop.type(b"q")
+        self.teleop.press("q")
         self.assertEqual(self.teleop.wait(10), 0)
         self.assertEqual(len(self.cmds), count)
 
     def test_the_turtle_moves(self):
-        pose = Latest("/turtle1/pose", Pose)
+        pose = TopicRecorder("/turtle1/pose", Pose)
         start = pose.wait()
         self.assertTrue(self.teleop.read_until(b"'q' to quit."))
-        self.assertTrue(wait_until(lambda: self.sub.get_num_connections() > 0, 10))
+        self.assertTrue(wait_for(lambda: self.sub.get_num_connections() > 0, 10))
         self.press("up")
         self.assertIsNotNone(pose.wait(lambda p: abs(p.x - start.x) > 0.5 or abs(p.y - start.y) > 0.5))
-        pose.close()
+        pose.unregister()
 
     def test_without_a_terminal_it_fails_clearly(self):
         proc = subprocess.run(["rosrun"] + NODE, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,

@@ -12,7 +12,8 @@ from std_srvs.srv import Empty
 from turtlesim.constants import CENTRE
 from turtlesim.msg import Pose
 from turtlesim.srv import Spawn
-from turtlesim.testing import Latest, wait_until
+from course_testkit.recorders import TopicRecorder
+from course_testkit.waiting import wait_for
 
 
 class Tools(unittest.TestCase):
@@ -27,21 +28,21 @@ class Tools(unittest.TestCase):
         return proc
 
     def test_draw_square_reaches_three_corners(self):
-        pose = Latest("/turtle1/pose", Pose)
+        pose = TopicRecorder("/turtle1/pose", Pose)
         self.run_node("draw_square")
         corners = [(CENTRE + 2.0, CENTRE), (CENTRE + 2.0, CENTRE + 2.0), (CENTRE, CENTRE + 2.0)]
         for cx, cy in corners:
             self.assertIsNotNone(pose.wait(lambda p: math.hypot(p.x - cx, p.y - cy) < 0.05, timeout=20),
                                  "corner (%.2f, %.2f) not reached" % (cx, cy))
-        pose.close()
+        pose.unregister()
 
     def test_mimic_copies_velocity(self):
         rospy.ServiceProxy("/reset", Empty)()
         rospy.ServiceProxy("/spawn", Spawn)(2.0, 2.0, 0.0, "turtle2")
         self.run_node("mimic", "input:=turtle1", "output:=turtle2")
-        follower = Latest("/turtle2/pose", Pose)
+        follower = TopicRecorder("/turtle2/pose", Pose)
         cmd = rospy.Publisher("/turtle1/cmd_vel", Twist, queue_size=1)
-        self.assertTrue(wait_until(lambda: cmd.get_num_connections() > 0, 10))
+        self.assertTrue(wait_for(lambda: cmd.get_num_connections() > 0, 10))
         twist = Twist()
         twist.linear.x, twist.angular.z = 1.5, 0.5
 
@@ -50,7 +51,7 @@ class Tools(unittest.TestCase):
             return abs(p.linear_velocity - 1.5) < 1e-4 and abs(p.angular_velocity - 0.5) < 1e-4
 
         self.assertIsNotNone(follower.wait(moving, timeout=15))
-        follower.close()
+        follower.unregister()
 
 
 if __name__ == "__main__":

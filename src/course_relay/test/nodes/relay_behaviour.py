@@ -3,6 +3,7 @@
 type the input's type (Twist and String here), and OUT defaults to IN_relay."""
 import unittest
 
+import rosgraph
 import rospy
 import rostest
 from geometry_msgs.msg import Twist
@@ -45,6 +46,27 @@ class RelayBehaviour(unittest.TestCase):
 
     def test_default_output_is_in_relay(self):
         self.relay_through("/words", "/words_relay", String, lambda i: String("word %d" % i))
+
+    def test_lazy_relay_listens_only_while_someone_listens(self):
+        """~lazy: with no subscriber on OUT the relay drops its IN subscription, and takes it back."""
+        master = rosgraph.Master("/relay_behaviour")
+
+        def relay_subscribes_input() -> bool:
+            return "/relay_lazy" in dict(master.getSystemState()[1]).get("/lazy_in", [])
+
+        pub = rospy.Publisher("/lazy_in", String, queue_size=10)
+        out = TopicRecorder("/lazy_out", String)
+        self.assertTrue(wait_for(lambda: pub.get_num_connections() > 0, 20))
+        self.assertTrue(wait_for(lambda: pub.publish(String("probe")) or out.messages, 20), "nothing relayed")
+        out.unregister()
+        # topic_tools drops IN when a message arrives and OUT has no subscriber: keep messages coming
+        self.assertTrue(wait_for(lambda: pub.publish(String("unheard")) or not relay_subscribes_input(), 20),
+                        "the lazy relay still subscribes /lazy_in with nobody on /lazy_out")
+        back = TopicRecorder("/lazy_out", String)
+        self.assertTrue(wait_for(relay_subscribes_input, 20), "the lazy relay did not subscribe /lazy_in again")
+        self.assertTrue(wait_for(lambda: pub.publish(String("heard")) or
+                                 any(m.data == "heard" for m in back.messages), 20))
+        back.unregister()
 
 
 if __name__ == "__main__":

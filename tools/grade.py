@@ -35,6 +35,8 @@ MILESTONES: List[Milestone] = [
     Milestone("teleop", "001 UPMC part 1, 2.1 (Part A teleop)", "mybot_teleop", "milestone_teleop.test"),
     Milestone("color", "001 UPMC part 1, 2.2 (Part B services)", "mybot_color", "milestone_color.test"),
     Milestone("launch_params", "001 UPMC part 1, 2.3 (Part C launch/params)", "mybot_teleop", "milestone_launch.test"),
+    Milestone("turtlebot", "001 UPMC part 1, 2.3.3 (TurtleBot3 Burger teleop)", "mybot_teleop",
+              "milestone_turtlebot.test"),
     Milestone("chatter", "002 Lab 2, section 2 (example pub/sub)", "chatter", "milestone_chatter.test"),
     Milestone("checkpoint1", "002 Lab 2, checkpoint 1 (TimestampString)", "my_chatter", "milestone_my_chatter.test"),
     Milestone("checkpoint2", "002 Lab 2, checkpoint 2 (turtle controller)", "lab2_turtlesim",
@@ -52,6 +54,11 @@ MILESTONES: List[Milestone] = [
               "milestone_pose_subscriber.test"),
     Milestone("interfaces", "004 custom interfaces (msg/srv/action)", "pkg_interfaces", "milestone_interfaces.test"),
     Milestone("param", "004 parameters (robot_name, dump/load)", "pkg_param", "milestone_param.test"),
+    Milestone("graph_picture", "003 Ex. 1 Part I task 3 (rqt_graph picture)", "course_graph",
+              "graph_two_turtles.test"),
+    Milestone("gazebo_rrbot", "003 Ex. 1 Part II tasks 1-3 (RRBot, coke can)", "mujoco_gazebo", "rrbot_world.test"),
+    Milestone("tf2_follow", "004 10 TF2 (broadcaster, follower)", "turtle_tf2", "follow.test"),
+    Milestone("tf2_static", "004 10.4 static transform A->B", "turtle_tf2", "static_transform.test"),
 ]
 
 TIMEOUT_S = 300

@@ -70,10 +70,10 @@ class TurtlebotMilestone(unittest.TestCase):
 
     def test_keys_drive_the_burger(self):
         self.assertEqual(rospy.get_param("/cmd_vel_topic_name").strip("/"), "cmd_vel")
-        self.assertTrue(0 < self.linear_scale <= BURGER_MAX_LINEAR,
-                        "linear_scale %s is outside the Burger's range (0, %s]" % (self.linear_scale, BURGER_MAX_LINEAR))
-        self.assertTrue(0 < self.angular_scale <= BURGER_MAX_ANGULAR,
-                        "angular_scale %s is outside the Burger's range (0, %s]" % (self.angular_scale, BURGER_MAX_ANGULAR))
+        self.assertTrue(0 < self.linear_scale <= BURGER_MAX_LINEAR, "linear_scale %s is outside the Burger's "
+                        "range (0, %s]" % (self.linear_scale, BURGER_MAX_LINEAR))
+        self.assertTrue(0 < self.angular_scale <= BURGER_MAX_ANGULAR, "angular_scale %s is outside the Burger's "
+                        "range (0, %s]" % (self.angular_scale, BURGER_MAX_ANGULAR))
 
         # up: forward at linear_scale, and the Burger moves forward
         start = self.odom.last

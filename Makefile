@@ -25,7 +25,8 @@ grade: build
 	@$(ROSENV) cd $(ROOT) && python3 tools/grade.py
 
 bench: build
-	@$(ROSENV) cd $(ROOT) && python3 bench/turtlesim_bench.py
+	@$(ROSENV) cd $(ROOT) && python3 bench/turtlesim_bench.py && python3 bench/relay_bench.py \
+	  && python3 bench/sim_bench.py
 
 clean:
 	rm -rf $(WS)/build $(WS)/devel $(WS)/build.log

@@ -25,10 +25,10 @@ def main() -> int:
     commands = TeleopCommands(float(rospy.get_param("~linear_speed", 2.0)),
                               float(rospy.get_param("~angular_speed", 2.0)))
     pub = rospy.Publisher("/%s/cmd_vel" % turtle.strip("/"), Twist, queue_size=10)
-    print("Controlling %s: arrow keys move, q quits." % turtle)
     decoder = KeyDecoder()
     try:
-        with RawTerminal(program="turtle_controller.py") as terminal:
+        with RawTerminal(program="turtle_controller.py") as terminal:  # raw mode before the prompt
+            print("Controlling %s: arrow keys move, q quits." % turtle, flush=True)
             while not rospy.is_shutdown() and not commands.quit:
                 try:
                     data = terminal.read(0.1)

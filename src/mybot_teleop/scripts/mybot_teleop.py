@@ -42,11 +42,11 @@ def main() -> int:
         return 2
     period = 1.0 / max(float(rospy.get_param("~rate", 10.0)), 0.1)
     pub = rospy.Publisher(topic_name, Twist, queue_size=10)
-    print("Command sent to " + pub.resolved_name)
-    print("Use the arrow keys to move, 's' to stop, 'q' to quit (%s mode)." % commands.mode)
     decoder = KeyDecoder()
     try:
-        with RawTerminal(program="mybot_teleop") as terminal:
+        with RawTerminal(program="mybot_teleop") as terminal:  # raw mode before the prompt
+            print("Command sent to " + pub.resolved_name)
+            print("Use the arrow keys to move, 's' to stop, 'q' to quit (%s mode)." % commands.mode, flush=True)
             next_tick = rospy.get_time() + period
             while not rospy.is_shutdown() and not commands.quit:
                 try:

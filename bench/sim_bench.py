@@ -6,7 +6,6 @@
    CPU% of the gazebo process at real-time factor 1, /gazebo/model_states rate, spawn latency."""
 import json
 import os
-import socket
 import subprocess
 import sys
 import time
@@ -14,6 +13,8 @@ import xmlrpc.client
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from rosenv import cpu_seconds, free_port  # noqa: E402
 
 
 def engine_rtf(urdf: Path, lidar_body: str = "", seconds: float = 20.0) -> float:
@@ -66,17 +67,6 @@ def camera_render_ms(urdf: Path, frames: int = 30) -> str:
         return "unavailable: %s" % exc
     finally:
         camera.close()
-
-
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("localhost", 0))
-        return s.getsockname()[1]
-
-
-def cpu_seconds(pid: int) -> float:
-    fields = open("/proc/%d/stat" % pid).read().rsplit(")", 1)[1].split()
-    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
 def node_figures(rtf: str, measure_s: float = 10.0) -> dict:

@@ -22,6 +22,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from rosenv import cpu_seconds, private_master  # noqa: E402
 
 UPSTREAM_CPU_20 = 7.4
+UPSTREAM_STARTUP_S = 0.32
 WINDOW_S = 10.0
 WARMUP_S = 2.0
 
@@ -34,9 +35,11 @@ def run(n: int, subscribe: bool) -> dict:
     from turtlesim.srv import SetPen, Spawn
 
     with private_master() as procs:
-        sim = procs.start(["rosrun", "turtlesim", "turtlesim_node"], "turtlesim")
         rospy.init_node("turtlesim_bench", anonymous=True, disable_signals=True)
+        launched = time.monotonic()
+        sim = procs.start(["rosrun", "turtlesim", "turtlesim_node"], "turtlesim")
         rospy.wait_for_service("/spawn", 30)
+        startup = time.monotonic() - launched
         names = ["turtle1"]
         spawn = rospy.ServiceProxy("/spawn", Spawn)
         for i in range(1, n):
@@ -63,7 +66,7 @@ def run(n: int, subscribe: bool) -> dict:
             time.sleep(0.1)
         cpu = 100.0 * (cpu_seconds(sim.pid) - cpu_start) / (time.monotonic() - wall_start)
         rospy.signal_shutdown("bench done")
-    result = {"n": n, "cpu": cpu}
+    result = {"n": n, "cpu": cpu, "startup": startup}
     if subscribe:
         rates, gaps = [], []
         for stamps in arrivals.values():
@@ -92,13 +95,16 @@ def main() -> int:
     print("turtlesim benchmark: N turtles moving and drawing, %.0f s window, 62.5 Hz target" % WINDOW_S)
     print("%4s  %9s  %9s  %8s  %10s  %10s  %12s" % ("N", "rate Hz", "worst Hz", "rate %", "jitter ms",
                                                      "p99 gap ms", "CPU% (subs)"))
-    rows = {}
+    rows = []
     for n in counts:
         r = measure(n, subscribe=True)
-        rows[n] = r
+        rows.append(r)
         print("%4d  %9.2f  %9.2f  %7.2f%%  %10.2f  %10.2f  %11.1f%%" % (
             n, r["rate_mean"], r["rate_min"], 100 * r["rate_min"] / 62.5, r["jitter_ms"], r["p99_gap_ms"], r["cpu"]))
         sys.stdout.flush()
+    startups = sorted(r["startup"] for r in rows)
+    print("start-up, launch to /spawn available: median %.2f s over %d runs (upstream C++: %.2f s)"
+          % (startups[len(startups) // 2], len(startups), UPSTREAM_STARTUP_S))
     print("CPU% of one core with nobody subscribed to the poses (as upstream was measured):")
     for n in counts:
         r = measure(n, subscribe=False)

@@ -1,9 +1,20 @@
 """geometry_msgs <-> frames conversions (ROS quaternions are x, y, z, w; ours are w, x, y, z)."""
 from __future__ import annotations
 
+import rospy
 from geometry_msgs.msg import Pose as PoseMsg, Twist as TwistMsg
 
 from .frames import Pose, Twist
+
+
+def stamp_from_sim(seconds: float) -> rospy.Time:
+    """Simulated time as a ROS stamp, rounded to the nearest nanosecond (negative -> 0).
+
+    MuJoCo sums its step in floating point (1.0799999999999919 after 1080 steps of 1 ms) and
+    rospy.Time.from_sec truncates, which would stamp half the /clock ticks 1 ns early
+    (1.079999999); Gazebo's integer clock gives 1.080000000."""
+    nsecs = max(0, int(round(seconds * 1e9)))
+    return rospy.Time(nsecs // 1000000000, nsecs % 1000000000)
 
 
 def pose_from_msg(msg: PoseMsg) -> Pose:

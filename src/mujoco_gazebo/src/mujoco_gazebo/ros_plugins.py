@@ -19,6 +19,7 @@ from std_msgs.msg import Float64, Header
 from tf2_msgs.msg import TFMessage
 
 from .camera import BodyCamera, CameraConfig, RenderUnavailable
+from .conversions import stamp_from_sim
 from .diffdrive import DiffDriveGeometry, WheelOdometry, wheel_speeds
 from .frames import Pose, quat_conj, quat_from_rpy, rotate, yaw_of
 from .lidar import Lidar, ScanConfig
@@ -68,7 +69,7 @@ class RobotPlugin:
 
 
 def _stamp(now: float) -> rospy.Time:
-    return rospy.Time.from_sec(max(0.0, now))
+    return stamp_from_sim(now)
 
 
 class JointControlPlugin(RobotPlugin):

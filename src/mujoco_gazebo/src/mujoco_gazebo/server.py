@@ -17,7 +17,8 @@ from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Empty, EmptyResponse
 
 from . import database
-from .conversions import pose_from_msg, pose_msg_is_finite, pose_to_msg, twist_from_msg, twist_to_msg
+from .conversions import (pose_from_msg, pose_msg_is_finite, pose_to_msg, stamp_from_sim, twist_from_msg,
+                          twist_to_msg)
 from .frames import Pose
 from .pacing import Pacer
 from .ros_plugins import RobotPlugin, make_plugins
@@ -127,7 +128,7 @@ class GazeboServer:
             except WorldError as exc:
                 res.success, res.status_message = False, "GetModelState: %s" % exc
                 return res
-            res.header.stamp = rospy.Time.from_sec(self.world.time)
+            res.header.stamp = stamp_from_sim(self.world.time)
         res.header.frame_id = req.relative_entity_name
         res.pose, res.twist = pose_to_msg(pose), twist_to_msg(twist)
         res.success, res.status_message = True, "GetModelState: got properties"
@@ -229,7 +230,7 @@ class GazeboServer:
                 if self._rebase:
                     pacer.rebase(time.monotonic(), now)
                     self._rebase = False
-                self.clock_pub.publish(Clock(rospy.Time.from_sec(now)))
+                self.clock_pub.publish(Clock(stamp_from_sim(now)))
                 if not paused:
                     if now + 1e-9 >= self._next_states:
                         self._next_states = max(self._next_states + self.states_period, now - self.states_period)

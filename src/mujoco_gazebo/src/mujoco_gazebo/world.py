@@ -74,6 +74,7 @@ class World:
         self.model: mujoco.MjModel = self.spec.compile()
         self.data = mujoco.MjData(self.model)
         self.paused = False
+        self._kinematics_stale = False
 
     # ---- time -------------------------------------------------------------------------
     @property
@@ -86,6 +87,18 @@ class World:
 
     def step(self, n: int = 1) -> None:
         mujoco.mj_step(self.model, self.data, nstep=n)
+        # mj_step leaves body poses/velocities as they were *before* its last integration
+        self._kinematics_stale = True
+
+    def _refresh_kinematics(self) -> None:
+        """Body poses and velocities of the current qpos/qvel (not one step behind), so a query
+        answers the state that spawn/delete/set_model_state (which run mj_forward) keep. Cheap
+        (no collision, no solver) and only when asked; the next mj_step recomputes all anyway."""
+        if self._kinematics_stale:
+            mujoco.mj_kinematics(self.model, self.data)
+            mujoco.mj_comPos(self.model, self.data)
+            mujoco.mj_comVel(self.model, self.data)
+            self._kinematics_stale = False
 
     # ---- spawn / delete ----------------------------------------------------------------
     def spawn(self, name: str, xml: str, pose: Pose, robot_namespace: str = "") -> ModelEntry:
@@ -236,10 +249,12 @@ class World:
         return mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_BODY, body)
 
     def body_pose(self, bid: int) -> Pose:
+        self._refresh_kinematics()
         return Pose(self.data.xpos[bid].copy(), self.data.xquat[bid].copy())
 
     def body_twist(self, bid: int) -> Twist:
         """World-frame twist of a body's frame origin."""
+        self._refresh_kinematics()
         vel = np.zeros(6)
         mujoco.mj_objectVelocity(self.model, self.data, mujoco.mjtObj.mjOBJ_BODY, bid, vel, 0)
         return Twist(vel[3:], vel[:3])

@@ -1,0 +1,96 @@
+"""The command-line steps of the course texts, verbatim, against a live turtlesim.
+
+Each row is a command a text tells students to type (001 2.1-2.2, 002 2-3, 003 Part I,
+000) and a piece of what it must print. A private roscore on a free loopback port.
+"""
+from __future__ import annotations
+
+import os
+import signal
+import socket
+import subprocess
+import time
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+
+COMMANDS = [
+    # 001 UPMC part 1, 2.1.1-2.1.5 and 2.2.3-2.2.6
+    ("rosnode list", "/turtlesim"),
+    ("rosnode info /turtlesim", "/turtle1/cmd_vel"),
+    ("rostopic list", "/turtle1/pose"),
+    ("rostopic info /turtle1/cmd_vel", "Type: geometry_msgs/Twist"),
+    ("rosmsg info geometry_msgs/Twist", "geometry_msgs/Vector3 linear"),
+    ("rosmsg show geometry_msgs/Twist", "float64 x"),
+    ("rostopic info /turtle1/pose", "Type: turtlesim/Pose"),
+    ("rosmsg info turtlesim/Pose", "float32 linear_velocity"),
+    ("rosservice info /turtle1/set_pen", "Type: turtlesim/SetPen"),
+    ("rossrv info turtlesim/SetPen", "uint8 width"),
+    ("rosparam list", "/turtlesim/background_b"),
+    # 002 Lab 2, sections 2-3
+    ("rospack find chatter", "/src/chatter"),
+    ("rosmsg show TimestampString", "float64"),
+    # 003 Part I, tasks 2 and 4, and the ROS Parameters section
+    ("rostopic pub -1 /turtle1/cmd_vel geometry_msgs/Twist '{linear: {x: 1.0}}'", ""),
+    ("rosservice call /clear", ""),
+    ("rosservice call /turtle1/set_pen 255 0 0 3 0", ""),
+    ("rosservice call /turtle1/teleport_absolute 5.544445 5.544445 0", ""),
+    ("rosservice call /reset", ""),
+    ("rosparam set /turtlesim/background_r 150", ""),
+    ("rosparam get /turtlesim/background_r", "150"),
+    # 000, in ROS 1 form
+    ("rostopic echo -n 1 /turtle1/pose", "linear_velocity"),
+    ("rosnode ping -c 1 /turtlesim", "reply from"),
+    # 003 Part I, task 1 (last: it ends the simulator)
+    ("rosnode kill /turtlesim", "killed"),
+]
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+@pytest.fixture(scope="module")
+def ros_env(tmp_path_factory):
+    """A roscore and a turtlesim_node of our own; both stopped (with their children) afterwards."""
+    home = tmp_path_factory.mktemp("ros_home")
+    port = free_port()
+    env = dict(os.environ, ROS_MASTER_URI="http://localhost:%d" % port, ROS_HOSTNAME="localhost",
+               ROS_HOME=str(home), ROS_LOG_DIR=str(home / "log"), QT_QPA_PLATFORM="offscreen")
+    env.pop("ROS_IP", None)
+    procs = [subprocess.Popen(["roscore", "-p", str(port)], env=env, stdout=subprocess.DEVNULL,
+                              stderr=subprocess.DEVNULL, start_new_session=True)]
+    try:
+        deadline = time.monotonic() + 30
+        while subprocess.run(["rosnode", "list"], env=env, capture_output=True).returncode != 0:
+            assert time.monotonic() < deadline, "roscore did not start"
+            time.sleep(0.2)
+        procs.append(subprocess.Popen(["rosrun", "turtlesim", "turtlesim_node"], env=env,
+                                      stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                                      start_new_session=True))
+        while "/spawn" not in subprocess.run(["rosservice", "list"], env=env, capture_output=True,
+                                             text=True).stdout:
+            assert time.monotonic() < deadline, "turtlesim did not start"
+            time.sleep(0.2)
+        yield env
+    finally:
+        for proc in reversed(procs):
+            if proc.poll() is None:
+                os.killpg(proc.pid, signal.SIGINT)
+                try:
+                    proc.wait(15)
+                except subprocess.TimeoutExpired:
+                    os.killpg(proc.pid, signal.SIGKILL)
+                    proc.wait()
+
+
+@pytest.mark.parametrize("command, expected", COMMANDS, ids=[c for c, _ in COMMANDS])
+def test_text_command(ros_env, command: str, expected: str) -> None:
+    proc = subprocess.run(command, shell=True, env=ros_env, cwd=ROOT, stdout=subprocess.PIPE,
+                          stderr=subprocess.STDOUT, text=True, timeout=60)
+    assert proc.returncode == 0, "%s failed:\n%s" % (command, proc.stdout)
+    assert expected in proc.stdout, "%s printed:\n%s" % (command, proc.stdout)

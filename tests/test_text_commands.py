@@ -6,10 +6,8 @@ Each row is a command a text tells students to type (001 2.1-2.2, 002 2-3, 003 P
 from __future__ import annotations
 
 import os
-import signal
 import socket
 import subprocess
-import time
 from pathlib import Path
 
 import pytest
@@ -57,35 +55,28 @@ def free_port() -> int:
 @pytest.fixture(scope="module")
 def ros_env(tmp_path_factory):
     """A roscore and a turtlesim_node of our own; both stopped (with their children) afterwards."""
+    from course_testkit.nodes import NodeProcess
+    from course_testkit.waiting import wait_for
+
     home = tmp_path_factory.mktemp("ros_home")
     port = free_port()
     env = dict(os.environ, ROS_MASTER_URI="http://localhost:%d" % port, ROS_HOSTNAME="localhost",
                ROS_HOME=str(home), ROS_LOG_DIR=str(home / "log"), QT_QPA_PLATFORM="offscreen")
     env.pop("ROS_IP", None)
-    procs = [subprocess.Popen(["roscore", "-p", str(port)], env=env, stdout=subprocess.DEVNULL,
-                              stderr=subprocess.DEVNULL, start_new_session=True)]
+
+    def succeeds(*argv: str) -> str:
+        proc = subprocess.run(argv, env=env, capture_output=True, text=True)
+        return proc.stdout if proc.returncode == 0 else ""
+
+    procs = [NodeProcess(["roscore", "-p", str(port)], env=env)]
     try:
-        deadline = time.monotonic() + 30
-        while subprocess.run(["rosnode", "list"], env=env, capture_output=True).returncode != 0:
-            assert time.monotonic() < deadline, "roscore did not start"
-            time.sleep(0.2)
-        procs.append(subprocess.Popen(["rosrun", "turtlesim", "turtlesim_node"], env=env,
-                                      stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                                      start_new_session=True))
-        while "/spawn" not in subprocess.run(["rosservice", "list"], env=env, capture_output=True,
-                                             text=True).stdout:
-            assert time.monotonic() < deadline, "turtlesim did not start"
-            time.sleep(0.2)
+        assert wait_for(lambda: succeeds("rosnode", "list"), 30), "roscore did not start"
+        procs.append(NodeProcess(["rosrun", "turtlesim", "turtlesim_node"], env=env))
+        assert wait_for(lambda: "/spawn" in succeeds("rosservice", "list"), 30), "turtlesim did not start"
         yield env
     finally:
         for proc in reversed(procs):
-            if proc.poll() is None:
-                os.killpg(proc.pid, signal.SIGINT)
-                try:
-                    proc.wait(15)
-                except subprocess.TimeoutExpired:
-                    os.killpg(proc.pid, signal.SIGKILL)
-                    proc.wait()
+            proc.stop(15)
 
 
 @pytest.mark.parametrize("command, expected", COMMANDS, ids=[c for c, _ in COMMANDS])

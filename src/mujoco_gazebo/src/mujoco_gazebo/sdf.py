@@ -124,12 +124,17 @@ def _link_geoms_xml(link: ET.Element) -> List[str]:
 _JOINT_TYPES = {"revolute": "hinge", "continuous": "hinge", "prismatic": "slide", "ball": "ball"}
 
 
+def _parse(text: str, what: str) -> ET.Element:
+    """The XML root of `text`; malformed XML becomes an SdfError naming `what` it should have been."""
+    try:
+        return ET.fromstring(text)
+    except ET.ParseError as exc:
+        raise SdfError("malformed %s: %s" % (what, exc)) from exc
+
+
 def sdf_to_mjcf(sdf_text: str) -> SdfModel:
     """Convert the first <model> of an SDF document into MJCF text."""
-    try:
-        root = ET.fromstring(sdf_text)
-    except ET.ParseError as exc:
-        raise SdfError("malformed SDF XML: %s" % exc) from exc
+    root = _parse(sdf_text, "SDF XML")
     model = root if root.tag == "model" else root.find("model")
     if model is None:
         model = root.find("world/model")
@@ -228,10 +233,7 @@ class WorldFile:
 
 def parse_world(text: str) -> WorldFile:
     """Read an SDF world file: <include> models, inline <model>s and the <physics>/<gravity> settings."""
-    try:
-        root = ET.fromstring(text)
-    except ET.ParseError as exc:
-        raise SdfError("malformed world file: %s" % exc) from exc
+    root = _parse(text, "world file")
     world = root if root.tag == "world" else root.find("world")
     if world is None:
         raise SdfError("no <world> element")

@@ -7,9 +7,12 @@ import pty
 import select
 import subprocess
 import time
-from typing import Optional, Sequence
+from typing import Callable, Optional, Sequence, TypeVar
 
 from course_testkit.nodes import NodeProcess, find_executable
+from course_testkit.waiting import wait_for
+
+T = TypeVar("T")
 
 ARROWS = {"up": b"\x1b[A", "down": b"\x1b[B", "right": b"\x1b[C", "left": b"\x1b[D"}
 
@@ -58,6 +61,18 @@ class PtyKeyboard:
     def press(self, key: str) -> None:
         """Type an arrow ('up', 'down', 'left', 'right') or any literal characters."""
         os.write(self.master, ARROWS.get(key, key.encode()))
+
+    def press_until(self, key: str, condition: Callable[[], T], tries: int = 20, interval: float = 1.0) -> T:
+        """Press `key`, again every `interval` seconds (at most `tries` times), until condition() is
+        truthy; return its last value. A node still starting, or whose subscribers are not all
+        connected yet, can miss a press; stops early if the node exits."""
+        value = condition()
+        for _ in range(tries):
+            if value or not self.node.running():
+                break
+            self.press(key)
+            value = wait_for(condition, interval)
+        return value
 
     def terminal_settings_echo(self) -> bool:
         """Whether the terminal echoes input (the node should turn echo off while running)."""

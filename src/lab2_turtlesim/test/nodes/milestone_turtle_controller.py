@@ -11,7 +11,6 @@ from turtlesim.srv import Spawn
 
 from course_testkit.keyboard import PtyKeyboard
 from course_testkit.recorders import TopicRecorder
-from course_testkit.waiting import wait_for
 
 
 class ControllerMilestone(unittest.TestCase):
@@ -23,11 +22,7 @@ class ControllerMilestone(unittest.TestCase):
         keyboards = {t: PtyKeyboard.rosrun(pkg, node_type, [t]) for t in ("turtle1", "turtle2")}
         try:
             def press_until(turtle, key, check):
-                for _ in range(20):
-                    keyboards[turtle].press(key)
-                    if wait_for(lambda: any(check(m) for m in cmds[turtle].messages), 1.0):
-                        return True
-                return False
+                return keyboards[turtle].press_until(key, lambda: any(check(m) for m in cmds[turtle].messages))
             self.assertTrue(press_until("turtle1", "up", lambda m: m.linear.x > 0), "turtle1 got no forward command")
             self.assertTrue(press_until("turtle2", "left", lambda m: m.angular.z > 0), "turtle2 got no left turn")
             self.assertFalse(any(m.angular.z > 0 for m in cmds["turtle1"].messages), "turtle1 got turtle2's key")

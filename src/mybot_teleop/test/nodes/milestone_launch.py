@@ -21,11 +21,9 @@ class LaunchMilestone(unittest.TestCase):
         return PtyKeyboard([shutil.which("roslaunch"), pkg, name])
 
     def press_until(self, keyboard, key, recorder, check, tries=30):
-        for _ in range(tries):
-            keyboard.press(key)
-            found = wait_for(lambda: [m for m in recorder.messages if check(m)], 1.0)
-            if found:
-                return found[-1]
+        found = keyboard.press_until(key, lambda: [m for m in recorder.messages if check(m)], tries)
+        if found:
+            return found[-1]
         self.fail("no matching message on %s after key %r" % (recorder.sub.name, key))
 
     def test_turtlesim_launch(self):

@@ -34,11 +34,9 @@ class TeleopMilestone(unittest.TestCase):
         """Press a key (again every second, as the node may still be starting) until a
         command satisfying check() arrives; return it."""
         self.cmds.clear()
-        for _ in range(20):
-            self.keyboard.press(key)
-            found = wait_for(lambda: [m for m in self.cmds.messages if check(m)], 1.0)
-            if found:
-                return found[-1]
+        found = self.keyboard.press_until(key, lambda: [m for m in self.cmds.messages if check(m)])
+        if found:
+            return found[-1]
         self.fail("no command for key %r on /turtle1/cmd_vel" % key)
 
     def test_arrows_drive_the_turtle_and_q_quits(self):
@@ -46,11 +44,8 @@ class TeleopMilestone(unittest.TestCase):
         up = self.press_until_command("up", lambda m: m.linear.x > 0)
         self.assertAlmostEqual(up.angular.z, 0.0)
         # turtlesim's connection to the new node may come up after ours: press until the turtle moves
-        for _ in range(10):
-            if wait_for(lambda: self.poses.last.x > start.x + 0.2, 1.5):
-                break
-            self.keyboard.press("up")
-        self.assertTrue(self.poses.last.x > start.x + 0.2, "the turtle did not move forward after the up arrow")
+        self.assertTrue(self.keyboard.press_until("up", lambda: self.poses.last.x > start.x + 0.2, tries=10,
+                                                  interval=1.5), "the turtle did not move forward after the up arrow")
         down = self.press_until_command("down", lambda m: m.linear.x < 0)
         self.assertAlmostEqual(down.linear.x, -up.linear.x, places=3)
         left = self.press_until_command("left", lambda m: m.angular.z > 0)

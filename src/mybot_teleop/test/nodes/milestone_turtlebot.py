@@ -54,12 +54,10 @@ class TurtlebotMilestone(unittest.TestCase):
         """Press a key (again every second: the node may still be starting, or its publisher
         not yet connected) until a /cmd_vel message satisfying check() arrives; return it."""
         self.cmds.clear()
-        for _ in range(30):
-            self.keyboard.press(key)
-            found = wait_for(lambda: [m for m in self.cmds.messages if check(m)], 1.0)
-            if found:
-                return found[-1]
-            self.assertTrue(self.keyboard.node.running(), "the teleop node exited before key %r" % key)
+        found = self.keyboard.press_until(key, lambda: [m for m in self.cmds.messages if check(m)], tries=30)
+        if found:
+            return found[-1]
+        self.assertTrue(self.keyboard.node.running(), "the teleop node exited before key %r" % key)
         self.fail("no command for key %r on /cmd_vel" % key)
 
     def odom_after(self, start: Odometry, sim_seconds: float):
@@ -82,11 +80,8 @@ class TurtlebotMilestone(unittest.TestCase):
         self.assertAlmostEqual(up.angular.z, 0.0, places=3)
         x0 = start.pose.pose.position.x
         # the simulator's connection to the new node may come up after ours: press until the Burger moves
-        for _ in range(10):
-            if wait_for(lambda: self.odom.last.pose.pose.position.x > x0 + 0.05, MOTION_TIMEOUT / 10):
-                break
-            self.keyboard.press("up")
-        self.assertTrue(self.odom.last.pose.pose.position.x > x0 + 0.05,
+        self.assertTrue(self.keyboard.press_until("up", lambda: self.odom.last.pose.pose.position.x > x0 + 0.05,
+                                                  tries=10, interval=MOTION_TIMEOUT / 10),
                         "the Burger did not move 5 cm forward after the up arrow (x %.3f -> %.3f)"
                         % (x0, self.odom.last.pose.pose.position.x))
 

@@ -39,11 +39,8 @@ class TeleopKey(unittest.TestCase):
 
     def warm_up(self) -> None:
         """The first Twist can race the publisher's side of the new connection: press until one arrives."""
-        for _attempt in range(10):
-            self.teleop.press("up")
-            if wait_for(lambda: self.cmds, 1.0):
-                return
-        self.fail("no Twist from the teleop after 10 presses")
+        self.assertTrue(self.teleop.press_until("up", lambda: self.cmds, tries=10),
+                        "no Twist from the teleop after 10 presses")
 
     def test_arrows_publish_scaled_twists_and_q_quits(self):
         self.assertTrue(self.teleop.read_until(b"Use arrow keys to move the turtle. 'q' to quit."),
@@ -70,11 +67,9 @@ class TeleopKey(unittest.TestCase):
         def moved(p) -> bool:
             return abs(p.x - start.x) > 0.5 or abs(p.y - start.y) > 0.5
 
-        for _attempt in range(10):
-            self.teleop.press("up")
-            if pose.wait(moved, timeout=1.5) is not None:
-                break
-        self.assertIsNotNone(pose.wait(moved, timeout=1.0), "the turtle did not move after 10 presses of up")
+        self.assertIsNotNone(self.teleop.press_until("up", lambda: pose.wait(moved, timeout=0.0), tries=10,
+                                                     interval=1.5),
+                             "the turtle did not move after 10 presses of up")
         pose.unregister()
 
     def test_without_a_terminal_it_fails_clearly(self):

@@ -11,8 +11,6 @@ from __future__ import annotations
 
 import argparse
 import os
-import signal
-import subprocess
 import sys
 import tempfile
 import threading
@@ -21,6 +19,8 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from rosenv import free_port  # noqa: E402
+
+from course_testkit.nodes import NodeProcess  # noqa: E402
 
 RELAYS = [("ours", "course_relay", "relay"), ("topic_tools", "topic_tools", "relay")]
 
@@ -34,8 +34,7 @@ def percentile(values, q):
 
 def measure(rospy, Twist, find, pkg, node_type, rate_hz, seconds, tag):
     in_topic, out_topic = "/bench_in_%s" % tag, "/bench_out_%s" % tag
-    relay = subprocess.Popen([find(pkg, node_type)[0], in_topic, out_topic, "__name:=relay_%s" % tag],
-                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+    relay = NodeProcess([find(pkg, node_type)[0], in_topic, out_topic, "__name:=relay_%s" % tag])
     received = []
     lock = threading.Lock()
 
@@ -87,11 +86,7 @@ def measure(rospy, Twist, find, pkg, node_type, rate_hz, seconds, tag):
     finally:
         sub.unregister()
         pub.unregister()
-        os.killpg(relay.pid, signal.SIGINT)
-        try:
-            relay.wait(5)
-        except subprocess.TimeoutExpired:
-            os.killpg(relay.pid, signal.SIGKILL)
+        relay.stop(5)
 
 
 def main() -> int:
@@ -102,8 +97,7 @@ def main() -> int:
     env_home = tempfile.mkdtemp(prefix="relay-bench-")
     os.environ.update(ROS_MASTER_URI="http://localhost:%d" % port, ROS_HOSTNAME="localhost",
                       ROS_HOME=env_home, ROS_LOG_DIR=os.path.join(env_home, "log"))
-    master = subprocess.Popen(["rosmaster", "--core", "-p", str(port)], stdout=subprocess.DEVNULL,
-                              stderr=subprocess.DEVNULL, start_new_session=True)
+    master = NodeProcess(["rosmaster", "--core", "-p", str(port)])
     try:
         import rosgraph
         deadline = time.time() + 20
@@ -129,11 +123,7 @@ def main() -> int:
                 "", "ratio o/t", "", "", ours["rate"] / ref["rate"], ours["p50"] / ref["p50"], ours["p99"] / ref["p99"]))
         rospy.signal_shutdown("done")
     finally:
-        os.killpg(master.pid, signal.SIGINT)
-        try:
-            master.wait(10)
-        except subprocess.TimeoutExpired:
-            os.killpg(master.pid, signal.SIGKILL)
+        master.stop(10)
     return 0
 
 

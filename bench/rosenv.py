@@ -2,9 +2,7 @@
 from __future__ import annotations
 
 import os
-import signal
 import socket
-import subprocess
 import tempfile
 import time
 from contextlib import contextmanager
@@ -26,28 +24,21 @@ def cpu_seconds(pid: int) -> float:
 
 
 class Processes:
-    """Processes started in their own sessions, stopped together."""
+    """Nodes started in their own process groups (course_testkit's NodeProcess), stopped together."""
 
     def __init__(self, scratch: Path) -> None:
         self.scratch = scratch
-        self.procs: List[subprocess.Popen] = []
+        self.procs: List = []
 
-    def start(self, argv: List[str], name: str) -> subprocess.Popen:
-        log = (self.scratch / ("%s.log" % name)).open("w")
-        proc = subprocess.Popen(argv, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+    def start(self, argv: List[str], name: str):
+        from course_testkit.nodes import NodeProcess
+        proc = NodeProcess(argv, log_path=str(self.scratch / ("%s.log" % name)))
         self.procs.append(proc)
         return proc
 
     def stop_all(self) -> None:
         for proc in reversed(self.procs):
-            if proc.poll() is None:
-                os.killpg(proc.pid, signal.SIGINT)
-        for proc in reversed(self.procs):
-            try:
-                proc.wait(10)
-            except subprocess.TimeoutExpired:
-                os.killpg(proc.pid, signal.SIGKILL)
-                proc.wait()
+            proc.stop()
         self.procs.clear()
 
 

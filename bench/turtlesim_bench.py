@@ -60,11 +60,11 @@ def run(n: int, subscribe: bool) -> dict:
         cpu_start = None
         while time.monotonic() - start < WARMUP_S + WINDOW_S:
             if cpu_start is None and time.monotonic() - start >= WARMUP_S:
-                cpu_start, wall_start = cpu_seconds(sim.pid), time.monotonic()
+                cpu_start, wall_start = cpu_seconds(sim.proc.pid), time.monotonic()
             for pub in pubs:
                 pub.publish(twist)
             time.sleep(0.1)
-        cpu = 100.0 * (cpu_seconds(sim.pid) - cpu_start) / (time.monotonic() - wall_start)
+        cpu = 100.0 * (cpu_seconds(sim.proc.pid) - cpu_start) / (time.monotonic() - wall_start)
         rospy.signal_shutdown("bench done")
     result = {"n": n, "cpu": cpu, "startup": startup}
     if subscribe:

@@ -11,9 +11,7 @@ from __future__ import annotations
 import math
 import os
 import shutil
-import signal
 import socket
-import subprocess
 import sys
 import tempfile
 import time
@@ -32,20 +30,6 @@ def free_port(preferred: int = 11311) -> int:
             except OSError:
                 continue
     raise RuntimeError("no free port")
-
-
-def start(argv, log: Path) -> subprocess.Popen:
-    return subprocess.Popen(argv, stdout=log.open("w"), stderr=subprocess.STDOUT, start_new_session=True)
-
-
-def stop(proc: subprocess.Popen) -> None:
-    if proc.poll() is None:
-        os.killpg(proc.pid, signal.SIGINT)
-        try:
-            proc.wait(10)
-        except subprocess.TimeoutExpired:
-            os.killpg(proc.pid, signal.SIGKILL)
-            proc.wait()
 
 
 def wait_for_master(deadline: float) -> None:
@@ -118,19 +102,22 @@ def main() -> int:
     os.environ.update(ROS_MASTER_URI="http://localhost:%d" % port, ROS_HOSTNAME="localhost",
                       ROS_HOME=str(scratch), ROS_LOG_DIR=str(scratch / "log"))
     os.environ.pop("ROS_IP", None)
+    from course_testkit.nodes import NodeProcess  # each in its own process group, stopped with it
+
     procs = []
     try:
-        procs.append(start(["roscore", "-p", str(port)], scratch / "roscore.log"))
+        procs.append(NodeProcess(["roscore", "-p", str(port)], log_path=str(scratch / "roscore.log")))
         wait_for_master(time.monotonic() + 30)
-        procs.append(start(["rosrun", "turtlesim", "turtlesim_node",
-                            "_snapshot_dir:=%s" % (scratch / "snapshots")], scratch / "turtlesim.log"))
+        procs.append(NodeProcess(["rosrun", "turtlesim", "turtlesim_node",
+                                  "_snapshot_dir:=%s" % (scratch / "snapshots")],
+                                 log_path=str(scratch / "turtlesim.log")))
         summary = scene(out_dir)
     except Exception as err:  # report, then still clean up
         print("demo failed: %s (logs in %s)" % (err, scratch), file=sys.stderr)
         return 1
     finally:
         for proc in reversed(procs):
-            stop(proc)
+            proc.stop()
     print(summary)
     shutil.rmtree(scratch, ignore_errors=True)
     return 0

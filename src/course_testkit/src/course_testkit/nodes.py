@@ -18,8 +18,15 @@ def find_executable(pkg: str, node_type: str) -> str:
     return paths[0]
 
 
+def unbuffered_env(env: Optional[dict] = None) -> dict:
+    """`env` (default: ours) with Python's output unbuffered, so a student's plain print() reaches
+    the log as it happens, not when the node exits."""
+    return dict(os.environ if env is None else env, PYTHONUNBUFFERED="1")
+
+
 class NodeProcess:
-    """A child node with its own process group, so stop() also ends anything it started."""
+    """A child node with its own process group, so stop() also ends anything it started.
+    Python nodes run unbuffered (PYTHONUNBUFFERED=1)."""
 
     def __init__(self, command: Sequence[str], stdin: Union[int, IO, None] = None,
                  log_path: Optional[str] = None, env: Optional[dict] = None,
@@ -28,7 +35,7 @@ class NodeProcess:
         self.command: List[str] = list(command)
         self._log = open(log_path, "wb") if log_path else subprocess.DEVNULL
         self.proc = subprocess.Popen(self.command, stdin=stdin, stdout=self._log if stdout is None else stdout,
-                                     stderr=subprocess.STDOUT, env=env, start_new_session=True)
+                                     stderr=subprocess.STDOUT, env=unbuffered_env(env), start_new_session=True)
 
     @classmethod
     def rosrun(cls, pkg: str, node_type: str, args: Sequence[str] = (), **kwargs) -> "NodeProcess":

@@ -1,0 +1,1 @@
+"""The milestones of each course text, one module per text (000-004)."""

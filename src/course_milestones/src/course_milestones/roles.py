@@ -19,6 +19,8 @@ from course_testkit.nodes import NodeProcess
 CALLER = "/course_milestone"
 # What every rospy node registers: not worth naming to a student.
 _ROUTINE = ("/rosout", "/get_loggers", "/set_logger_level")
+# What rospy prints when the master stops a node because a newer one took its name.
+SAME_NAME = "new node registered with same name"
 
 
 class Started(NamedTuple):
@@ -111,7 +113,7 @@ def describe(started: Sequence[Started], known: Dict[str, int]) -> str:
     for s in started:
         regs = registrations_of(s, known)
         if not s.node.running() and not regs:
-            parts.append("%s exited (code %s)" % (s.name, s.node.proc.returncode))
+            parts.append("%s exited (code %s)%s" % (s.name, s.node.proc.returncode, last_words(s)))
             continue
         words = []
         for kind in ("publishes", "subscribes", "services"):
@@ -139,6 +141,22 @@ def servers_first(paths: Sequence[str]) -> List[str]:
             serves = False
         return (not serves, "server" not in os.path.basename(path))
     return sorted(paths, key=key)
+
+
+def last_words(started: Started) -> str:
+    """The end of a process's output, for a failure message (with a hint when rospy stopped it
+    because another node took its name)."""
+    try:
+        tail = started.output().strip()[-200:]
+    except OSError:
+        return ""
+    if not tail:
+        return ""
+    hint = ""
+    if SAME_NAME in tail:
+        hint = (" (another node took its name: give each node its own name, e.g. from its argument, "
+                "or rospy.init_node(..., anonymous=True))")
+    return ", its output ending with %r%s" % (tail, hint)
 
 
 def not_executable(pkg: str) -> List[str]:

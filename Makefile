@@ -5,7 +5,7 @@ WS := $(ROOT)/catkin_ws
 # Every ROS command runs in the workspace environment, with the venv's python3 first.
 ROSENV := source $(WS)/devel/setup.bash &&
 
-.PHONY: deps build demo test unit rostest grade bench clean
+.PHONY: deps build demo test unit rostest grade autograder bench clean
 
 deps:
 	@bash $(ROOT)/tools/deps.sh
@@ -21,8 +21,16 @@ demo: build
 test: build
 	@$(ROSENV) cd $(ROOT) && python3 -m pytest
 
+# make grade: our reference solutions, every milestone. make grade SUBMISSIONS=DIR: every entry of
+# DIR (folder, .zip, .tar.gz) is one student's submission. Results in $(GRADES) (default ./grades).
+GRADES ?= $(ROOT)/grades
 grade: build
-	@$(ROSENV) cd $(ROOT) && python3 tools/grade.py
+	@$(ROSENV) cd $(ROOT) && rosrun course_grader grade $(if $(SUBMISSIONS),--class $(abspath $(SUBMISSIONS))) \
+	  --out $(GRADES) $(if $(JOBS),--jobs $(JOBS))
+
+# Gradescope autograder: setup.sh + run_autograder + this repository; MILESTONES="chatter ..." grades only those.
+autograder: build
+	@$(ROSENV) rosrun course_grader make_autograder --out $(ROOT)/autograder.zip $(foreach m,$(MILESTONES),--only $(m))
 
 bench: build
 	@$(ROSENV) cd $(ROOT) && python3 bench/turtlesim_bench.py && python3 bench/relay_bench.py \

@@ -1,0 +1,84 @@
+"""rosrun course_grader grade [SUBMISSION...] [--class DIR] [--jobs N] [--only M ...] [--out DIR]
+
+Grades each SUBMISSION (a folder, .zip or .tar.gz of catkin packages), or every entry of a class
+folder (--class DIR), against the course milestones; with neither, grades the course's own
+reference solutions (every milestone). Writes under --out (default ./grades):
+  <student>/<milestone>/junit.xml, *.log, *.png   verdict, student logs, canvas snapshots
+  <student>/results.json                          Gradescope results
+  gradebook.csv, report.html                      the class
+Prints a line per finished submission. Exit code: with the reference, 1 if a milestone fails;
+with students, 0 once every submission has its verdicts.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import shutil
+import sys
+import time
+from typing import List, Optional
+
+from course_milestones.registry import MILESTONES
+
+from course_grader import gradebook, report, submissions
+from course_grader.runner import REFERENCE, Grader, Options
+
+# One milestone run more than there are cores: a run spends part of its time waiting (ROS
+# start-up, the student's nodes). Reference, 18 milestones on 2 shared cores: --jobs 2 69 s,
+# --jobs 3 59 s, --jobs 4 49-65 s (docs/grading.md).
+DEFAULT_JOBS = (os.cpu_count() or 2) + 1
+
+
+def parse(argv: Optional[List[str]]) -> argparse.Namespace:
+    parser = argparse.ArgumentParser(prog="grade", description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("submissions", nargs="*", help="folders, .zip or .tar.gz files, one per student")
+    parser.add_argument("--class", dest="class_dir", help="a folder whose every entry is one submission")
+    parser.add_argument("--jobs", "-j", type=int, default=DEFAULT_JOBS,
+                        help="milestone runs at once, across submissions (default %(default)s)")
+    parser.add_argument("--only", action="append", metavar="M", help="grade only milestone M (repeatable)")
+    parser.add_argument("--only-from", metavar="FILE",
+                        help="grade each submission on the milestones named (as keys) in its own JSON FILE")
+    parser.add_argument("--out", default="grades", help="output folder (default ./grades)")
+    parser.add_argument("--timeout", type=float, default=240.0, help="time limit per milestone run, s")
+    parser.add_argument("--results-json", metavar="PATH",
+                        help="also write the (one) submission's Gradescope results.json to PATH")
+    parser.add_argument("--list", action="store_true", help="list the milestones and exit")
+    parser.add_argument("-v", "--verbose", action="store_true", help="a line per milestone run too")
+    return parser.parse_args(argv)
+
+
+def main(argv: Optional[List[str]] = None) -> int:
+    opts = parse(argv)
+    if opts.list:
+        for m in MILESTONES:
+            print("%-18s %5g pts  %-24s %-20s %s" % (m.name, m.points, m.text, m.test_file, " ".join(m.packages)))
+        return 0
+    unknown = sorted(set(opts.only or []) - {m.name for m in MILESTONES})
+    if unknown:
+        print("unknown milestone(s): %s (see --list)" % ", ".join(unknown), file=sys.stderr)
+        return 2
+    subs = submissions.named(opts.submissions)
+    if opts.class_dir:
+        subs += submissions.class_submissions(opts.class_dir)
+    reference = not subs
+    if opts.results_json and len(subs) != 1:
+        print("--results-json needs exactly one submission", file=sys.stderr)
+        return 2
+    if reference:
+        subs = [submissions.Submission(REFERENCE, "")]
+    out = os.path.abspath(opts.out)
+    os.makedirs(out, exist_ok=True)
+    started = time.monotonic()
+    grader = Grader(MILESTONES, Options(out, opts.jobs, opts.only, opts.only_from, opts.timeout,
+                                        opts.verbose or reference))
+    verdicts = grader.grade(subs, reference)
+    gradebook.write(os.path.join(out, "gradebook.csv"), verdicts, MILESTONES)
+    report.write(os.path.join(out, "report.html"), verdicts, MILESTONES)
+    if opts.results_json:
+        shutil.copyfile(os.path.join(out, subs[0].name, "results.json"), opts.results_json)
+    failed = [v for v in verdicts if not v.passed]
+    print("graded %d submission(s), %d milestone verdicts (%d failed) in %.1f s, --jobs %d; see %s"
+          % (len(subs), len(verdicts), len(failed), time.monotonic() - started, opts.jobs,
+             os.path.join(out, "report.html")), flush=True)
+    return 1 if reference and failed else 0

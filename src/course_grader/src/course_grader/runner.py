@@ -1,0 +1,222 @@
+"""Grade submissions: unpack, build an overlay, run each selected milestone's rostest, isolated,
+with `jobs` runs at once across submissions; write each verdict's JUnit XML and each
+submission's results.json as soon as it is complete. One submission's failure (even a crash of
+the grader on it) is that submission's verdict and never stops the others."""
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import tarfile
+import threading
+import time
+import traceback
+import zipfile
+from concurrent.futures import ThreadPoolExecutor
+from typing import Callable, Dict, List, NamedTuple, Optional, Sequence
+
+from course_milestones.milestone import Milestone
+from course_testkit import junit
+from course_testkit.artifacts import ENV_VAR as ARTIFACTS_VAR
+from course_testkit.rostest_runner import run_rostest
+
+from course_grader import gradescope, submissions, verdict, workspace
+from course_grader.submissions import Submission
+from course_grader.verdict import Verdict
+
+MILESTONE_PACKAGE = "course_milestones"
+REFERENCE = "reference"
+
+
+class Options(NamedTuple):
+    out: str
+    jobs: int = 2
+    only: Optional[Sequence[str]] = None  # grade just these milestones
+    only_from: Optional[str] = None  # or: the milestones named (as keys) in this JSON file of each submission
+    timeout: float = 240.0  # per milestone run
+    verbose: bool = False
+
+
+class _Progress:
+    """Verdicts of one submission as they come in."""
+
+    def __init__(self, submission: Submission) -> None:
+        self.submission = submission
+        self.started = time.monotonic()
+        self.expected: Optional[int] = None
+        self.verdicts: List[Verdict] = []
+        self.note = ""
+
+
+class Grader:
+    def __init__(self, milestones: Sequence[Milestone], options: Options,
+                 say: Callable[[str], None] = lambda line: print(line, flush=True)) -> None:
+        self.milestones = list(milestones)
+        self.options = options
+        self.say = say
+        self._lock = threading.Lock()
+        self._idle = threading.Condition(self._lock)
+        self._pending = 0
+        self._progress: Dict[str, _Progress] = {}
+        self._done = 0
+        self.verdicts: List[Verdict] = []
+        self._pool = ThreadPoolExecutor(max(1, options.jobs), thread_name_prefix="grade")
+
+    # -- scheduling -------------------------------------------------------------------------
+    def _submit(self, fn, *args) -> None:
+        with self._lock:
+            self._pending += 1
+
+        def task():
+            try:
+                fn(*args)
+            finally:
+                with self._lock:
+                    self._pending -= 1
+                    self._idle.notify_all()
+        self._pool.submit(task)
+
+    def grade(self, subs: Sequence[Submission], reference: bool = False) -> List[Verdict]:
+        for sub in subs:
+            self._progress[sub.name] = _Progress(sub)
+            self._submit(self._prepare, sub, reference)
+        with self._lock:
+            while self._pending:
+                self._idle.wait()
+        self._pool.shutdown()
+        return self.verdicts
+
+    # -- one submission ---------------------------------------------------------------------
+    def _student_dir(self, student: str, *parts: str) -> str:
+        return os.path.join(self.options.out, student, *parts)
+
+    def _work_dir(self, student: str, *parts: str) -> str:
+        return os.path.join(self.options.out, "work", student, *parts)
+
+    def _only_for(self, files: Optional[str]) -> Optional[List[str]]:
+        if self.options.only:
+            return list(self.options.only)
+        if self.options.only_from and files:
+            path = os.path.join(files, self.options.only_from)
+            if os.path.isfile(path):
+                with open(path) as f:
+                    return list(json.load(f))
+        return None
+
+    def _prepare(self, sub: Submission, reference: bool) -> None:
+        progress = self._progress[sub.name]
+        selected: List[Milestone] = []
+        try:
+            if reference:
+                selected = verdict.select(self.milestones, [], self._only_for(None), True)
+                self._expect(sub, len(selected))
+                for m in selected:
+                    self._submit(self._run, sub, m, dict(os.environ), [])
+                return
+            files = self._work_dir(sub.name, "files")
+            try:
+                submissions.unpack(sub, files)
+                if not submissions.find_packages(files):
+                    submissions.unpack_nested(files)
+            except (submissions.UnsafeArchive, OSError, ValueError, EOFError, zipfile.BadZipFile,
+                    tarfile.TarError) as err:
+                selected = verdict.select(self.milestones, [], self._only_for(None), False)
+                self._fail_all(sub, selected, "the submission cannot be unpacked: %s" % err)
+                return
+            packages = submissions.find_packages(files)
+            names = [p.name for p in packages if p.name]
+            selected = verdict.select(self.milestones, names, self._only_for(files), False)
+            progress.note = "packages found: %s" % (", ".join(names) or "none")
+            self._expect(sub, len(selected))
+            runnable = []
+            for m in selected:
+                missing = verdict.missing_package(m, packages)
+                if missing:
+                    self._record(Verdict(sub.name, m, False, missing))
+                else:
+                    runnable.append(m)
+            if not runnable:
+                return
+            ws = self._work_dir(sub.name, "ws")
+            workspace.populate(ws, packages)
+            built = workspace.build(ws, workspace.course_setup())
+            if not built.ok:
+                for m in runnable:
+                    self._record(Verdict(sub.name, m, False, verdict.build_failed(built.summary)))
+                return
+            for m in runnable:
+                hints = [h for p in packages if p.name in m.packages for h in submissions.script_problems(p.path)]
+                self._submit(self._run, sub, m, built.env, hints)
+        except Exception:  # noqa: BLE001 - the grader's own failure is this submission's verdict
+            self._fail_all(sub, selected or self.milestones[:1], "the grader failed on this submission:\n%s"
+                           % traceback.format_exc(limit=5))
+
+    def _run(self, sub: Submission, m: Milestone, env: Dict[str, str], hints: List[str]) -> None:
+        try:
+            artifacts = self._student_dir(sub.name, m.name)
+            shutil.rmtree(artifacts, ignore_errors=True)
+            os.makedirs(artifacts)
+            run_dir = self._work_dir(sub.name, "runs", m.name)
+            shutil.rmtree(run_dir, ignore_errors=True)
+            result = run_rostest(MILESTONE_PACKAGE, m.test_file, env=dict(env, **{ARTIFACTS_VAR: artifacts}),
+                                 results_dir=run_dir, timeout=self.options.timeout)
+            with open(os.path.join(artifacts, "rostest.txt"), "w") as f:
+                f.write(result.output)
+            reason = "" if result.passed else result.summary()
+            if not result.passed:
+                hints = hints + verdict.output_capped(artifacts)
+                reason = "\n".join([reason] + [h for h in hints if h.split(" ", 1)[0].split("/")[-1] not in reason])
+            verdict.trim_files(artifacts)
+            verdict.trim_files(run_dir)
+            self._record(Verdict(sub.name, m, result.passed, reason, verdict.log_tails(artifacts),
+                                 result.elapsed, artifacts))
+        except Exception:  # noqa: BLE001
+            self._record(Verdict(sub.name, m, False, "the grader failed on this milestone:\n%s"
+                                 % traceback.format_exc(limit=5)))
+
+    # -- results ----------------------------------------------------------------------------
+    def _expect(self, sub: Submission, count: int) -> None:
+        with self._lock:
+            self._progress[sub.name].expected = count
+        if count == 0:
+            self._finish(sub)
+
+    def _fail_all(self, sub: Submission, selected: Sequence[Milestone], reason: str) -> None:
+        with self._lock:
+            progress = self._progress[sub.name]
+            progress.expected = len(progress.verdicts) + len([m for m in selected if m.name not in
+                                                              {v.milestone.name for v in progress.verdicts}])
+        for m in selected:
+            if m.name not in {v.milestone.name for v in progress.verdicts}:
+                self._record(Verdict(sub.name, m, False, reason))
+
+    def _record(self, v: Verdict) -> None:
+        folder = self._student_dir(v.student, v.milestone.name)
+        os.makedirs(folder, exist_ok=True)
+        case = junit.Case(v.milestone.name, v.student, v.elapsed, None if v.passed else "failure", v.output())
+        junit.write(os.path.join(folder, "junit.xml"), v.student, [case])
+        if self.options.verbose:
+            self.say("    %-10s %-20s %-6s %6.1fs%s" % (v.student, v.milestone.name, "pass" if v.passed else "FAIL",
+                                                      v.elapsed, "" if v.passed else "  " + v.reason.splitlines()[0]))
+        with self._lock:
+            progress = self._progress[v.student]
+            progress.verdicts.append(v)
+            self.verdicts.append(v)
+            complete = progress.expected is not None and len(progress.verdicts) >= progress.expected
+        if complete:
+            self._finish(progress.submission)
+
+    def _finish(self, sub: Submission) -> None:
+        progress = self._progress[sub.name]
+        order = {m.name: i for i, m in enumerate(self.milestones)}
+        ordered = sorted(progress.verdicts, key=lambda v: order.get(v.milestone.name, len(order)))
+        elapsed = time.monotonic() - progress.started
+        os.makedirs(self._student_dir(sub.name), exist_ok=True)
+        gradescope.write(self._student_dir(sub.name, "results.json"), ordered, elapsed, progress.note)
+        with self._lock:
+            self._done += 1
+            done = self._done
+        points = sum(v.points for v in ordered)
+        self.say("[%d/%d] %s: %g/%g points, %d of %d milestones passed, %.1f s"
+                 % (done, len(self._progress), sub.name, points, sum(v.milestone.points for v in ordered),
+                    sum(v.passed for v in ordered), len(ordered), elapsed))

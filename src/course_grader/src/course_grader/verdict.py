@@ -1,0 +1,134 @@
+"""One student's result on one milestone, and its reasons in words a student can act on.
+
+Which milestones a submission is graded on: a milestone with `packages` is graded for a
+submission holding at least one of them; a submission holding none of any milestone's packages
+is graded on all of those (each failing with what was expected and what was found); milestones
+without packages (they check the course workspace itself) are graded for the reference only;
+`--only` always grades what it names.
+"""
+from __future__ import annotations
+
+import difflib
+import glob
+import os
+import re
+from typing import Iterable, List, NamedTuple, Optional, Sequence
+
+from course_milestones.milestone import Milestone
+from course_testkit.isolation import MAX_FILE_BYTES
+
+from course_grader.submissions import Package
+
+# What is kept of a big file once a run is over: its last part.
+KEEP_BYTES = 1024 * 1024
+LOG_TAIL_LINES = 20
+# Terminal control sequences (colours, window titles) that roslaunch and rospy print.
+_ANSI = re.compile(r"\x1b(\[[0-9;?]*[A-Za-z]|\][^\x07\x1b]*(\x07|\x1b\\)?)")
+LOG_TAIL_BYTES = 16 * 1024
+MAX_LOGS = 6
+
+
+class Verdict(NamedTuple):
+    student: str
+    milestone: Milestone
+    passed: bool
+    reason: str  # why it failed, in words ("" when passed)
+    logs: str = ""  # the last lines of the student's node logs
+    elapsed: float = 0.0
+    artifacts_dir: str = ""
+
+    @property
+    def points(self) -> float:
+        return self.milestone.points if self.passed else 0.0
+
+    def output(self) -> str:
+        """What the student reads for this milestone: the verdict, then the logs' last lines."""
+        head = "passed" if self.passed else "FAILED: %s" % self.reason
+        return head + ("\n\n" + self.logs if self.logs else "")
+
+    def canvases(self) -> List[str]:
+        """The PNG pictures the check saved (turtlesim canvases)."""
+        if not self.artifacts_dir:
+            return []
+        return sorted(glob.glob(os.path.join(self.artifacts_dir, "*.png")))
+
+
+def select(milestones: Sequence[Milestone], packages: Iterable[str], only: Optional[Iterable[str]],
+           reference: bool) -> List[Milestone]:
+    """The milestones to grade for a submission holding `packages` (see the module docstring)."""
+    if only:
+        wanted = set(only)
+        return [m for m in milestones if m.name in wanted]
+    if reference:
+        return list(milestones)
+    held = set(packages)
+    own = [m for m in milestones if m.packages and held & set(m.packages)]
+    return own or [m for m in milestones if m.packages]
+
+
+def missing_package(milestone: Milestone, found: Sequence[Package]) -> Optional[str]:
+    """Why the submission cannot be graded on `milestone` because the package the text names is
+    not in it, or None when it is there (or the milestone needs none)."""
+    if not milestone.packages:
+        return None
+    names = [p.name for p in found if p.name]
+    if set(names) & set(milestone.packages):
+        return None
+    expected = " or ".join("'%s'" % n for n in milestone.packages)
+    unreadable = ["%s (%s)" % (os.path.basename(p.path), p.problem) for p in found if not p.name]
+    if not names and not unreadable:
+        return ("no catkin package found: expected a package named %s (a folder with a package.xml whose "
+                "<name> is %s)" % (expected, expected))
+    text = "expected a catkin package named %s, found: %s" % (expected, ", ".join(names + unreadable))
+    close = [c for n in milestone.packages for c in difflib.get_close_matches(n, names, 1, 0.6)]
+    if close:
+        text += " (the package name comes from package.xml's <name>: rename '%s' to %s, as the text names it)" \
+                % (close[0], expected)
+    return text
+
+
+def build_failed(summary: str) -> str:
+    return "the submission does not build (catkin_make failed):\n%s" % summary
+
+
+def log_tails(folder: str, lines: int = LOG_TAIL_LINES) -> str:
+    """The last lines of each student log (`*.log`) a check wrote in `folder`."""
+    paths = sorted(glob.glob(os.path.join(folder, "*.log")), key=os.path.getmtime)[-MAX_LOGS:]
+    parts = []
+    for path in paths:
+        try:
+            size = os.path.getsize(path)
+            with open(path, "rb") as f:
+                f.seek(max(0, size - LOG_TAIL_BYTES))
+                text = _ANSI.sub("", f.read().decode("utf-8", errors="replace"))
+        except OSError:
+            continue
+        tail = [line[:300] for line in text.splitlines()[-lines:]]
+        title = "--- last lines of %s%s ---" % (os.path.basename(path), " (%d bytes)" % size if size > LOG_TAIL_BYTES else "")
+        parts.append("\n".join([title] + (tail or ["(empty)"])))
+    return "\n".join(parts)
+
+
+def output_capped(folder: str) -> List[str]:
+    """A sentence for each student log that reached the file-size cap (the node was stopped there)."""
+    return ["%s: the node printed more than %d MB, where the grader stops it (print less)"
+            % (os.path.basename(p), MAX_FILE_BYTES // 2**20)
+            for p in sorted(glob.glob(os.path.join(folder, "*.log"))) if os.path.getsize(p) >= MAX_FILE_BYTES]
+
+
+def trim_files(folder: str, keep: int = KEEP_BYTES) -> None:
+    """Keep only the last `keep` bytes of every file bigger than that under `folder`."""
+    for root, _, files in os.walk(folder):
+        for name in files:
+            path = os.path.join(root, name)
+            try:
+                size = os.path.getsize(path)
+                if size <= keep or os.path.islink(path):
+                    continue
+                with open(path, "rb") as f:
+                    f.seek(size - keep)
+                    tail = f.read()
+                with open(path, "wb") as f:
+                    f.write(b"[... first %d bytes left out ...]\n" % (size - keep) + tail)
+            except OSError:
+                continue

@@ -1,0 +1,132 @@
+"""A student's overlay workspace, chained on the course workspace, the way a student builds it:
+`source <course>/devel/setup.bash; catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3`.
+
+The course workspace is the one this package runs from (found from this module's location,
+then CMAKE_PREFIX_PATH), never a hard-coded path.
+"""
+from __future__ import annotations
+
+import os
+import re
+import shlex
+import shutil
+import subprocess
+from typing import Dict, List, NamedTuple, Optional, Sequence
+
+from course_testkit import isolation
+
+from course_grader.submissions import Package
+
+BUILD_TIMEOUT_S = 600.0
+PYTHON = "/usr/bin/python3"
+SETUP_ENV = "COURSE_WS_SETUP"  # override: the setup.bash of the course workspace
+# Where a failed build says why: CMake errors, compiler errors, catkin's and Python's complaints.
+_ERROR_START = re.compile(r"CMake Error|\berror:|fatal error|^Error|Traceback \(most recent|Multiple packages|"
+                          r"^make(\[\d+\])?: \*\*\*")
+SUMMARY_LINES = 25
+
+
+class BuildResult(NamedTuple):
+    ok: bool
+    log_path: str
+    summary: str  # the lines that say why it failed ("" when ok)
+    env: Optional[Dict[str, str]]  # the overlay's environment when ok
+
+
+def course_setup() -> str:
+    """The course workspace's setup.bash: $COURSE_WS_SETUP, else the devel space this package is
+    imported from, else the first CMAKE_PREFIX_PATH entry that holds course_grader."""
+    import course_grader  # in a devel space, its __init__ is the devel space's shim
+
+    explicit = os.environ.get(SETUP_ENV)
+    if explicit:
+        return explicit
+    folder = os.path.dirname(os.path.abspath(course_grader.__file__))
+    while folder != os.path.dirname(folder):
+        candidate = os.path.join(folder, "setup.bash")
+        if os.path.isfile(candidate) and os.path.isfile(os.path.join(folder, ".catkin")):
+            return candidate
+        folder = os.path.dirname(folder)
+    for prefix in os.environ.get("CMAKE_PREFIX_PATH", "").split(os.pathsep):
+        candidate = os.path.join(prefix, "setup.bash")
+        if prefix and os.path.isfile(candidate) and os.path.exists(
+                os.path.join(prefix, "share", "course_grader")):
+            return candidate
+    raise FileNotFoundError("cannot find the course workspace's setup.bash: set %s" % SETUP_ENV)
+
+
+def sourced_env(setup_bash: str, base: Optional[Dict[str, str]] = None) -> Dict[str, str]:
+    """The environment after `source setup_bash` in bash (what a student's shell would have)."""
+    out = subprocess.run(["bash", "-c", "source %s >/dev/null && env -0" % shlex.quote(setup_bash)],
+                         env=dict(os.environ if base is None else base), stdout=subprocess.PIPE, check=True,
+                         timeout=60).stdout
+    pairs = (item.split(b"=", 1) for item in out.split(b"\0") if b"=" in item)
+    return {k.decode(errors="replace"): v.decode(errors="replace") for k, v in pairs}
+
+
+def build_failure_summary(log: str, lines: int = SUMMARY_LINES) -> str:
+    """What a failed catkin_make log says is wrong: each error block (the error line and the
+    indented or blank lines after it, e.g. CMake's reason and call stack, a compiler's source
+    line, a Python traceback's last line), at most `lines` lines; else the log's last lines."""
+    all_lines = [line.rstrip() for line in log.splitlines()]
+    kept: List[str] = []
+    i = 0
+    while i < len(all_lines) and len(kept) < lines:
+        if not _ERROR_START.search(all_lines[i]):
+            i += 1
+            continue
+        block = [all_lines[i]]
+        i += 1
+        while i < len(all_lines) and (not all_lines[i] or all_lines[i][0].isspace()
+                                      or all_lines[i].startswith("Call Stack")):
+            block.append(all_lines[i])
+            i += 1
+        if block[0].startswith("Traceback") and i < len(all_lines):
+            block.append(all_lines[i])  # the exception itself
+            i += 1
+        kept += [line for line in block if line.strip()]
+    if not kept:
+        kept = [line for line in all_lines if line.strip()][-lines:]
+    return "\n".join(kept[:lines])
+
+
+def populate(ws: str, packages: Sequence[Package]) -> None:
+    """ws/src holds a copy of each package folder (nothing else of the submission)."""
+    src = os.path.join(ws, "src")
+    if os.path.exists(ws):
+        shutil.rmtree(ws)
+    os.makedirs(src)
+    used: Dict[str, int] = {}
+    for package in packages:
+        base = os.path.basename(package.path.rstrip("/")) or "package"
+        used[base] = used.get(base, 0) + 1
+        target = os.path.join(src, base if used[base] == 1 else "%s_%d" % (base, used[base]))
+        shutil.copytree(package.path, target, symlinks=True)
+
+
+def build(ws: str, setup_bash: str, timeout: float = BUILD_TIMEOUT_S) -> BuildResult:
+    """catkin_make in `ws` on top of the course workspace; the overlay's environment if it builds."""
+    log_path = os.path.join(ws, "build.log")
+    token = isolation.new_token()
+    env = isolation.token_env(dict(os.environ), token)
+    env.pop("ROS_MASTER_URI", None)
+    command = "source %s && catkin_make -DPYTHON_EXECUTABLE=%s" % (shlex.quote(setup_bash), PYTHON)
+    with open(log_path, "wb") as log:
+        proc = subprocess.Popen(["bash", "-c", command], cwd=ws, env=env, stdout=log, stderr=subprocess.STDOUT,
+                                stdin=subprocess.DEVNULL, start_new_session=True)
+        isolation.limit_file_size(proc.pid)
+        try:
+            code = proc.wait(timeout)
+        except subprocess.TimeoutExpired:
+            code = None
+        finally:
+            isolation.kill_run(token, proc.pid)
+            proc.wait()
+    with open(log_path, "rb") as f:
+        f.seek(max(0, os.path.getsize(log_path) - 200_000))
+        text = f.read().decode("utf-8", errors="replace")
+    if code is None:
+        return BuildResult(False, log_path, "catkin_make did not finish within %.0f s" % timeout, None)
+    if code != 0:
+        return BuildResult(False, log_path, build_failure_summary(text), None)
+    return BuildResult(True, log_path, "", sourced_env(os.path.join(ws, "devel", "setup.bash")))

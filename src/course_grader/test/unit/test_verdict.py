@@ -1,0 +1,61 @@
+"""Which milestones a submission is graded on, and verdicts in words."""
+import os
+
+from course_milestones.milestone import Milestone
+
+from course_grader import verdict
+from course_grader.submissions import Package
+from course_grader.verdict import Verdict
+
+CHATTER = Milestone("chatter", "Example pub/sub", "002 section 2", "chatter.test", ("chatter",))
+CP1 = Milestone("checkpoint1", "TimestampString", "002 checkpoint 1", "checkpoint1.test", ("my_chatter",))
+GRAPH = Milestone("graph_picture", "rqt_graph picture", "003 Part I", "graph_picture.test", (), 5.0)
+ALL = [CHATTER, CP1, GRAPH]
+
+
+def test_select_by_packages_held():
+    assert verdict.select(ALL, ["my_chatter"], None, False) == [CP1]
+    assert verdict.select(ALL, ["something_else"], None, False) == [CHATTER, CP1]
+    assert verdict.select(ALL, [], None, True) == ALL
+    assert verdict.select(ALL, ["my_chatter"], ["graph_picture"], False) == [GRAPH]
+
+
+def test_missing_package_sentences():
+    assert verdict.missing_package(CHATTER, [Package("chatter", "/x/chatter")]) is None
+    assert verdict.missing_package(GRAPH, []) is None
+    none = verdict.missing_package(CHATTER, [])
+    assert "no catkin package found" in none and "'chatter'" in none
+    wrong = verdict.missing_package(CP1, [Package("mychatter", "/x/mychatter")])
+    assert "expected a catkin package named 'my_chatter', found: mychatter" in wrong
+    assert "rename 'mychatter' to 'my_chatter'" in wrong
+    broken = verdict.missing_package(CP1, [Package(None, "/x/pkg", "package.xml cannot be read: junk")])
+    assert "pkg (package.xml cannot be read: junk)" in broken
+
+
+def test_verdict_points_and_output():
+    failed = Verdict("alice", CHATTER, False, "no executable publishes /chatter_talk", "--- last lines of a.log ---\nx")
+    assert failed.points == 0 and failed.output().startswith("FAILED: no executable")
+    assert failed.output().endswith("x")
+    assert Verdict("alice", GRAPH, True, "").points == 5.0
+
+
+def test_log_tails_keep_the_end_of_each_log(tmp_path):
+    (tmp_path / "talker.py.log").write_text("\n".join("line %d" % i for i in range(100)))
+    (tmp_path / "canvas.png").write_bytes(b"png")
+    tails = verdict.log_tails(str(tmp_path), lines=3)
+    assert tails == "--- last lines of talker.py.log ---\nline 97\nline 98\nline 99"
+    assert Verdict("a", CHATTER, True, "", artifacts_dir=str(tmp_path)).canvases() == [str(tmp_path / "canvas.png")]
+
+
+def test_trim_and_capped_output(tmp_path):
+    big = tmp_path / "listener.py.log"
+    big.write_bytes(b"x" * 5000 + b"THE END")
+    verdict.trim_files(str(tmp_path), keep=100)
+    text = big.read_bytes()
+    assert text.endswith(b"THE END") and b"left out" in text and os.path.getsize(big) < 200
+    assert verdict.output_capped(str(tmp_path)) == []
+
+
+def test_log_tails_drop_terminal_control_sequences(tmp_path):
+    (tmp_path / "roslaunch.log").write_text("\x1b]2;/ws/a.launch http://localhost:1/\x07\x1b[1mprocess[a-1]: started\x1b[0m\n")
+    assert verdict.log_tails(str(tmp_path)).splitlines()[1] == "process[a-1]: started"

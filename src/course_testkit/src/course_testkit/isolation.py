@@ -1,0 +1,137 @@
+"""Keep one run (a rostest, a grading job) from leaking processes, ports or disk.
+
+Every process of a run carries an environment token (`COURSE_RUN_TOKEN=<uuid>`), inherited by
+whatever it starts, even through setsid() or a double fork. After the run, every process whose
+/proc/<pid>/environ holds the token is stopped and killed, whatever it did to its session,
+process group or signal handlers. Files the run writes are capped (RLIMIT_FSIZE), so a node
+printing without end is killed by SIGXFSZ instead of filling the disk. Where the machine allows
+it (root, `unshare`), the run also gets its own network namespace with only a loopback device.
+"""
+from __future__ import annotations
+
+import functools
+import os
+import resource
+import signal
+import socket
+import subprocess
+import uuid
+from typing import Dict, Iterable, List, Optional, Sequence, Set
+
+TOKEN_VAR = "COURSE_RUN_TOKEN"
+# Largest file any process of a run may write: student logs, canvas pictures, JUnit XML.
+MAX_FILE_BYTES = 64 * 1024 * 1024
+
+
+def new_token() -> str:
+    return uuid.uuid4().hex
+
+
+def token_env(env: Dict[str, str], token: str) -> Dict[str, str]:
+    """`env` with the run's token set."""
+    return dict(env, **{TOKEN_VAR: token})
+
+
+def free_port(host: str = "127.0.0.1") -> int:
+    """A TCP port nobody listens on right now (the kernel's pick)."""
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as sock:
+        sock.bind((host, 0))
+        return sock.getsockname()[1]
+
+
+def _proc_pids() -> Iterable[int]:
+    for entry in os.listdir("/proc"):
+        if entry.isdigit():
+            yield int(entry)
+
+
+def pids_with_token(token: str) -> List[int]:
+    """Every live process whose environment holds TOKEN_VAR=token (never this process)."""
+    needle = ("%s=%s" % (TOKEN_VAR, token)).encode()
+    found = []
+    for pid in _proc_pids():
+        if pid == os.getpid():
+            continue
+        try:
+            with open("/proc/%d/environ" % pid, "rb") as f:
+                variables = f.read().split(b"\0")
+        except OSError:  # gone, or not ours
+            continue
+        if needle in variables:
+            found.append(pid)
+    return found
+
+
+def descendants(root: int) -> List[int]:
+    """The processes below `root` in the parent tree right now (not root itself)."""
+    children: Dict[int, List[int]] = {}
+    for pid in _proc_pids():
+        try:
+            with open("/proc/%d/stat" % pid) as f:
+                # The command name may hold spaces and parentheses: the fields after the last ')'.
+                ppid = int(f.read().rsplit(")", 1)[1].split()[1])
+        except (OSError, IndexError, ValueError):
+            continue
+        children.setdefault(ppid, []).append(pid)
+    found, todo = [], [root]
+    while todo:
+        for child in children.get(todo.pop(), []):
+            found.append(child)
+            todo.append(child)
+    return found
+
+
+def _signal_all(pids: Iterable[int], sig: int) -> None:
+    for pid in pids:
+        try:
+            os.kill(pid, sig)
+        except (ProcessLookupError, PermissionError):
+            pass
+
+
+def kill_run(token: str, root: Optional[int] = None, rounds: int = 20) -> Set[int]:
+    """Kill every process of the run: the token holders and the tree below `root` (which catches
+    a process that emptied its environment). Each round freezes them all (SIGSTOP, so a forking
+    process cannot outrun us), then kills them. Returns the pids killed."""
+    killed: Set[int] = set()
+    for _ in range(rounds):
+        pids = set(pids_with_token(token))
+        if root is not None:
+            pids.update(descendants(root))
+        pids -= {os.getpid()}
+        if not pids:
+            break
+        _signal_all(pids, signal.SIGSTOP)
+        _signal_all(pids, signal.SIGKILL)
+        killed |= pids
+    return killed
+
+
+def limit_file_size(pid: int, max_bytes: int = MAX_FILE_BYTES) -> None:
+    """Cap the size of any file `pid` (and what it starts from now on) writes."""
+    try:
+        resource.prlimit(pid, resource.RLIMIT_FSIZE, (max_bytes, max_bytes))
+    except (ProcessLookupError, PermissionError, ValueError):
+        pass
+
+
+@functools.lru_cache(maxsize=1)
+def network_namespace_works() -> bool:
+    """True when `unshare --net` can give a run its own loopback-only network here."""
+    try:
+        return subprocess.run(netns_prefix() + ["true"], stdout=subprocess.DEVNULL,
+                              stderr=subprocess.DEVNULL, timeout=20).returncode == 0
+    except (OSError, subprocess.TimeoutExpired):
+        return False
+
+
+def netns_prefix() -> List[str]:
+    """A command prefix that runs the rest in a new network namespace with loopback up."""
+    return ["unshare", "--net", "--", "sh", "-c", 'ip link set lo up && exec "$@"', "netns"]
+
+
+def isolated_command(command: Sequence[str], own_network: bool) -> List[str]:
+    """`command`, in its own network namespace when asked for and possible."""
+    if own_network and network_namespace_works():
+        return netns_prefix() + list(command)
+    return list(command)

@@ -1,0 +1,65 @@
+"""The env-token kill: a child that leaves its session, forks and ignores SIGINT/SIGTERM dies."""
+import os
+import subprocess
+import sys
+import time
+
+from course_testkit import isolation
+from course_testkit.waiting import wait_for
+
+# A grandchild in a new session that ignores the polite signals, whose parent exits at once.
+ESCAPER = r'''
+import os, signal, sys, time
+if os.fork() == 0:
+    os.setsid()
+    if os.fork() == 0:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+        signal.signal(signal.SIGTERM, signal.SIG_IGN)
+        print(os.getpid(), flush=True)
+        time.sleep(600)
+    os._exit(0)
+os.wait()
+'''
+
+
+def test_free_port_is_bindable():
+    import socket
+    port = isolation.free_port()
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", port))
+
+
+def test_token_kill_reaches_a_setsid_double_forked_process():
+    token = isolation.new_token()
+    proc = subprocess.Popen([sys.executable, "-c", ESCAPER], env=isolation.token_env(dict(os.environ), token),
+                            stdout=subprocess.PIPE, text=True)
+    escaped = int(proc.stdout.readline())
+    proc.wait(10)
+    proc.stdout.close()
+    assert escaped in isolation.pids_with_token(token)
+    killed = isolation.kill_run(token)
+    assert escaped in killed
+    assert wait_for(lambda: not isolation.pids_with_token(token), 5)
+
+
+def test_descendants_follow_the_parent_tree():
+    proc = subprocess.Popen(["sh", "-c", "sleep 60 & sleep 60 & wait"])
+    try:
+        found = wait_for(lambda: len(isolation.descendants(proc.pid)) >= 2, 5)
+        assert found
+    finally:
+        isolation.kill_run(isolation.new_token(), proc.pid)
+        proc.wait(5)
+    assert not isolation.descendants(proc.pid)
+
+
+def test_file_size_cap_stops_an_endless_writer(tmp_path):
+    target = tmp_path / "big.log"
+    proc = subprocess.Popen(["sh", "-c", "sleep 0.2; yes 0123456789 > %s" % target])
+    isolation.limit_file_size(proc.pid, 1024 * 1024)
+    proc.wait(30)
+    assert target.stat().st_size <= 1024 * 1024
+
+
+def test_isolated_command_without_own_network_is_unchanged():
+    assert isolation.isolated_command(["rostest", "a", "b.test"], False) == ["rostest", "a", "b.test"]

@@ -1,0 +1,80 @@
+"""The Gradescope autograder: `make_autograder` writes the zip; its run_autograder, run in a temp
+folder laid out like Gradescope's (/autograder/source, submission, results; relocated through
+AUTOGRADER_ROOT), grades one good and one bad submission into results.json in Gradescope's format
+(gradescope-autograders.readthedocs.io, "Autograder Specifications")."""
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import zipfile
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+COURSE_SETUP = ROOT / "catkin_ws" / "devel" / "setup.bash"
+VISIBILITY = {"hidden", "after_due_date", "after_published", "visible"}
+
+
+@pytest.fixture(scope="module")
+def autograder_zip(tmp_path_factory) -> Path:
+    out = tmp_path_factory.mktemp("zip") / "autograder.zip"
+    subprocess.run(["rosrun", "course_grader", "make_autograder", "--out", str(out), "--only", "chatter"],
+                   check=True, stdout=subprocess.PIPE, timeout=120)
+    return out
+
+
+def test_zip_has_gradescopes_entry_points_at_its_root(autograder_zip: Path, tmp_path: Path) -> None:
+    with zipfile.ZipFile(autograder_zip) as zf:
+        names = set(zf.namelist())
+        assert {"setup.sh", "run_autograder", "Makefile", "milestones.txt"} <= names
+        assert "src/course_grader/package.xml" in names and not any(n.startswith("tests/submissions/") for n in names)
+        for entry in ("setup.sh", "run_autograder"):
+            assert (zf.getinfo(entry).external_attr >> 16) & 0o111, "%s is not executable" % entry
+        assert zf.read("milestones.txt").decode().split() == ["chatter"]
+        zf.extract("setup.sh", tmp_path)
+    assert subprocess.run(["bash", "-n", str(tmp_path / "setup.sh")]).returncode == 0
+
+
+def _gradescope_layout(base: Path, autograder_zip: Path, submission: Path) -> Path:
+    root = base / "autograder"
+    (root / "results").mkdir(parents=True)
+    with zipfile.ZipFile(autograder_zip) as zf:
+        zf.extractall(root / "source")
+    for entry in ("setup.sh", "run_autograder"):
+        os.chmod(root / "source" / entry, 0o755)  # zipfile does not restore modes; unzip does
+    shutil.copy(root / "source" / "run_autograder", root / "run_autograder")
+    shutil.copytree(submission, root / "submission")
+    return root
+
+
+def _check_format(results: dict) -> None:
+    assert isinstance(results["score"], (int, float))
+    assert isinstance(results.get("output", ""), str) and results.get("visibility", "visible") in VISIBILITY
+    assert results["tests"], "no tests in results.json"
+    for test in results["tests"]:
+        assert isinstance(test["name"], str) and isinstance(test["output"], str)
+        assert isinstance(test["score"], (int, float)) and isinstance(test["max_score"], (int, float))
+        assert test["status"] in ("passed", "failed") and test.get("visibility", "visible") in VISIBILITY
+    assert results["score"] == sum(t["score"] for t in results["tests"])
+
+
+@pytest.mark.parametrize("submission,passed", [
+    (ROOT / "src" / "chatter", True),  # our reference package, handed in as a student would
+    (ROOT / "tests" / "submissions" / "bad_wrong_name", False),
+], ids=["good", "bad"])
+def test_run_autograder(autograder_zip: Path, tmp_path: Path, submission: Path, passed: bool) -> None:
+    root = _gradescope_layout(tmp_path, autograder_zip, submission)
+    env = dict(os.environ, AUTOGRADER_ROOT=str(root), COURSE_WS_SETUP=str(COURSE_SETUP))
+    proc = subprocess.run([str(root / "run_autograder")], cwd=root, env=env, stdout=subprocess.PIPE,
+                          stderr=subprocess.STDOUT, text=True, timeout=600)
+    assert proc.returncode == 0, proc.stdout[-3000:]
+    results = json.loads((root / "results" / "results.json").read_text())
+    _check_format(results)
+    [test] = results["tests"]
+    assert test["name"].startswith("chatter:")
+    assert test["status"] == ("passed" if passed else "failed"), test["output"]
+    if not passed:
+        assert "expected a catkin package named 'chatter'" in test["output"]

@@ -1,0 +1,85 @@
+"""Grade every sample submission under tests/submissions/ in one grader run, and check each
+verdict against the sample's expected.json:
+  {"<milestone>": {"passed": true}} or {"<milestone>": {"passed": false, "reason": "<regex>"}}
+The regex must match the milestone's output in the sample's Gradescope results.json (the
+failing check in words plus the student's log tails). Only the listed milestones are graded.
+Afterwards no process of any run may be left (bad samples fork, setsid, ignore SIGINT).
+"""
+from __future__ import annotations
+
+import json
+import os
+import re
+import subprocess
+from pathlib import Path
+from typing import Dict, List, Tuple
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+SAMPLES = sorted(p.parent for p in ROOT.glob("tests/submissions/*/expected.json"))
+JOBS = 2
+GRADER_TIMEOUT_S = 3600
+MESSAGE_CHARS = 2500
+
+
+def expectations() -> List[Tuple[str, str, Dict]]:
+    found = []
+    for sample in SAMPLES:
+        for milestone, expected in json.loads((sample / "expected.json").read_text()).items():
+            found.append((sample.name, milestone, expected))
+    return found
+
+
+@pytest.fixture(scope="module")
+def graded(tmp_path_factory) -> Path:
+    out = tmp_path_factory.mktemp("grades")
+    proc = subprocess.run(["rosrun", "course_grader", "grade"] + [str(s) for s in SAMPLES]
+                          + ["--only-from", "expected.json", "--jobs", str(JOBS), "--out", str(out)],
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=GRADER_TIMEOUT_S)
+    assert proc.returncode == 0, proc.stdout[-5000:]
+    print(proc.stdout)
+    return out
+
+
+def _tests_of(graded: Path, sample: str) -> Dict[str, Dict]:
+    results = json.loads((graded / sample / "results.json").read_text())
+    return {t["name"].split(":", 1)[0]: t for t in results["tests"]}
+
+
+@pytest.mark.parametrize("sample,milestone,expected", expectations(), ids=lambda v: v if isinstance(v, str) else "")
+def test_verdict(graded: Path, sample: str, milestone: str, expected: Dict) -> None:
+    tests = _tests_of(graded, sample)
+    assert milestone in tests, "%s: no verdict for %s (graded: %s)" % (sample, milestone, sorted(tests))
+    test = tests[milestone]
+    want = "passed" if expected["passed"] else "failed"
+    assert test["status"] == want, "%s/%s: expected %s, got %s:\n%s" % (sample, milestone, want, test["status"],
+                                                                      test["output"][:MESSAGE_CHARS])
+    if not expected["passed"] and expected.get("reason"):
+        assert re.search(expected["reason"], test["output"], re.S), \
+            "%s/%s: the reason does not match %r:\n%s" % (sample, milestone, expected["reason"],
+                                                          test["output"][:MESSAGE_CHARS])
+
+
+def test_outputs_for_the_class(graded: Path) -> None:
+    gradebook = (graded / "gradebook.csv").read_text().splitlines()
+    assert gradebook[0].startswith("student,") and len(gradebook) == len(SAMPLES) + 1
+    assert "<table>" in (graded / "report.html").read_text()
+    for sample in SAMPLES:
+        for milestone in json.loads((sample / "expected.json").read_text()):
+            assert (graded / sample.name / milestone / "junit.xml").is_file()
+
+
+def test_nothing_left_running(graded: Path) -> None:
+    """Every run's processes carry COURSE_ARTIFACTS_DIR under the output folder: none may survive."""
+    marker = str(graded).encode()
+    left = []
+    for pid in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            environ = Path("/proc", pid, "environ").read_bytes()
+            cmdline = Path("/proc", pid, "cmdline").read_bytes().replace(b"\0", b" ")
+        except OSError:
+            continue
+        if marker in environ and int(pid) != os.getpid():
+            left.append("%s %s" % (pid, cmdline.decode(errors="replace")))
+    assert not left, "processes left running after grading:\n" + "\n".join(left)

@@ -1,17 +1,28 @@
 #!/usr/bin/env python3
-"""turtlesim under load: N turtles all moving and drawing.
+"""turtlesim start-up, and turtlesim under load: N turtles all moving and drawing.
 
-For N = 1, 10, 20, 50 prints the achieved pose rate per turtle (mean and worst),
+Start-up: from launching turtlesim_node to /spawn, by each way a student starts it (rosrun,
+the executable itself, roslaunch), >= 10 runs each, interleaved so that load on the machine
+hits every way alike. Two times per run: /spawn available (the probe rospy.wait_for_service
+makes, polled every 10 ms instead of its 0.3 s) and a first /spawn call answered. Printed as
+median and p90 against upstream C++'s 0.32 s; the target is 0.45 s.
+
+Load: for N = 1, 10, 20, 50 prints the achieved pose rate per turtle (mean and worst),
 the tick jitter seen by a subscriber (std dev and p99 of the gap between poses,
 against the 16 ms tick) and the CPU% of one core used by the turtlesim process,
 with every pose subscribed and, for CPU, also with none subscribed (as the
 upstream figure was taken). Targets: 62.5 Hz within 1% at N = 50; at N = 20 no
 more than 2x the 7.4% of a core the upstream C++ turtlesim needs.
+
+    python3 bench/turtlesim_bench.py [N ...]         # start-up, then load for N turtles
+    python3 bench/turtlesim_bench.py --startup [RUNS]  # start-up only
 """
 from __future__ import annotations
 
 import json
 import math
+import os
+import socket
 import statistics
 import subprocess
 import sys
@@ -23,6 +34,10 @@ from rosenv import cpu_seconds, private_master  # noqa: E402
 
 UPSTREAM_CPU_20 = 7.4
 UPSTREAM_STARTUP_S = 0.32
+STARTUP_TARGET_S = 0.45
+STARTUP_RUNS = 12
+STARTUP_POLL_S = 0.01
+LAUNCH_PATHS = ("rosrun", "executable", "roslaunch")
 WINDOW_S = 10.0
 WARMUP_S = 2.0
 
@@ -36,10 +51,8 @@ def run(n: int, subscribe: bool) -> dict:
 
     with private_master() as procs:
         rospy.init_node("turtlesim_bench", anonymous=True, disable_signals=True)
-        launched = time.monotonic()
         sim = procs.start(["rosrun", "turtlesim", "turtlesim_node"], "turtlesim")
         rospy.wait_for_service("/spawn", 30)
-        startup = time.monotonic() - launched
         names = ["turtle1"]
         spawn = rospy.ServiceProxy("/spawn", Spawn)
         for i in range(1, n):
@@ -66,7 +79,7 @@ def run(n: int, subscribe: bool) -> dict:
             time.sleep(0.1)
         cpu = 100.0 * (cpu_seconds(sim.proc.pid) - cpu_start) / (time.monotonic() - wall_start)
         rospy.signal_shutdown("bench done")
-    result = {"n": n, "cpu": cpu, "startup": startup}
+    result = {"n": n, "cpu": cpu}
     if subscribe:
         rates, gaps = [], []
         for stamps in arrivals.values():
@@ -80,31 +93,123 @@ def run(n: int, subscribe: bool) -> dict:
     return result
 
 
-def measure(n: int, subscribe: bool) -> dict:
-    """One run in its own process: rospy allows one node per process."""
-    out = subprocess.run([sys.executable, __file__, "--one", str(n), "1" if subscribe else "0"],
+def spawn_probe(master, caller_id: str) -> bool:
+    """What rospy.wait_for_service checks: /spawn is registered and its server takes a connection."""
+    import rosgraph.network
+    try:
+        code, _msg, uri = master.lookupService(caller_id, "/spawn")
+    except OSError:
+        return False
+    if code != 1:
+        return False
+    host, port = uri[len("rosrpc://"):].rsplit(":", 1)
+    try:
+        with socket.create_connection((host, int(port)), timeout=2.0) as s:
+            rosgraph.network.write_ros_handshake_header(
+                s, {"probe": "1", "md5sum": "*", "callerid": caller_id, "service": "/spawn"})
+        return True
+    except OSError:
+        return False
+
+
+def launch_command(path: str, scratch: Path) -> list:
+    from course_testkit.nodes import find_executable
+    if path == "rosrun":
+        return ["rosrun", "turtlesim", "turtlesim_node"]
+    if path == "executable":
+        return [find_executable("turtlesim", "turtlesim_node")]
+    launch = scratch / "turtlesim_only.launch"
+    launch.write_text('<launch><node pkg="turtlesim" type="turtlesim_node" name="turtlesim"/></launch>\n')
+    return ["roslaunch", str(launch)]
+
+
+def startup_runs(runs: int) -> dict:
+    """Launch-to-/spawn times per launch path: {path: {"available": [s...], "answered": [s...]}}."""
+    import rospy
+    from xmlrpc.client import ServerProxy
+
+    from turtlesim.srv import Spawn
+
+    times = {path: {"available": [], "answered": []} for path in LAUNCH_PATHS}
+    with private_master() as procs:
+        rospy.init_node("turtlesim_startup_bench", anonymous=True, disable_signals=True)
+        caller_id = rospy.get_name()
+        master = ServerProxy(os.environ["ROS_MASTER_URI"])
+        commands = {path: launch_command(path, procs.scratch) for path in LAUNCH_PATHS}
+        for run_index in range(runs):
+            for path in LAUNCH_PATHS:
+                launched = time.monotonic()
+                sim = procs.start(commands[path], "%s-%d" % (path, run_index))
+                while not spawn_probe(master, caller_id):
+                    if time.monotonic() - launched > 30 or not sim.running():
+                        raise RuntimeError("%s: /spawn never came up (see %s)" % (path, procs.scratch))
+                    time.sleep(STARTUP_POLL_S)
+                available = time.monotonic() - launched
+                rospy.ServiceProxy("/spawn", Spawn)(1.0, 1.0, 0.0, "")
+                answered = time.monotonic() - launched
+                times[path]["available"].append(available)
+                times[path]["answered"].append(answered)
+                sim.stop()
+                procs.procs.remove(sim)
+                deadline = time.monotonic() + 10  # the next run must not find this one's /spawn
+                while spawn_probe(master, caller_id) and time.monotonic() < deadline:
+                    time.sleep(STARTUP_POLL_S)
+        rospy.signal_shutdown("bench done")
+    return times
+
+
+def median_p90(values: list) -> tuple:
+    ordered = sorted(values)
+    return statistics.median(ordered), ordered[max(0, math.ceil(0.9 * len(ordered)) - 1)]
+
+
+def print_startup(times: dict) -> None:
+    runs = len(next(iter(times.values()))["available"])
+    print("start-up, launch to /spawn: median and p90 of %d runs per path (upstream C++: %.2f s, target <= %.2f s)"
+          % (runs, UPSTREAM_STARTUP_S, STARTUP_TARGET_S))
+    print("%-11s  %-34s  %-34s  %s" % ("launch", "/spawn available (median, p90)", "first /spawn answered", "target"))
+    for path, got in times.items():
+        cells = []
+        for key in ("available", "answered"):
+            med, p90 = median_p90(got[key])
+            cells.append("%.3f s, %.3f s = %.2fx upstream" % (med, p90, med / UPSTREAM_STARTUP_S))
+        med, p90 = median_p90(got["available"])
+        verdict = "met" if p90 <= STARTUP_TARGET_S else ("median only" if med <= STARTUP_TARGET_S else "missed")
+        print("%-11s  %-34s  %-34s  %s" % (path, cells[0], cells[1], verdict))
+    sys.stdout.flush()
+
+
+def in_subprocess(*args: str):
+    """Run this file with `args` in its own process (rospy allows one node per process); its JSON answer."""
+    out = subprocess.run([sys.executable, __file__] + list(args),
                          stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True, check=True)
     return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def measure(n: int, subscribe: bool) -> dict:
+    return in_subprocess("--one", str(n), "1" if subscribe else "0")
 
 
 def main() -> int:
     if sys.argv[1:2] == ["--one"]:
         print(json.dumps(run(int(sys.argv[2]), sys.argv[3] == "1")))
         return 0
+    if sys.argv[1:2] == ["--startup-runs"]:
+        print(json.dumps(startup_runs(int(sys.argv[2]))))
+        return 0
+    if sys.argv[1:2] == ["--startup"]:
+        print_startup(in_subprocess("--startup-runs", (sys.argv[2:3] or [str(STARTUP_RUNS)])[0]))
+        return 0
+    print_startup(in_subprocess("--startup-runs", str(STARTUP_RUNS)))
     counts = [int(a) for a in sys.argv[1:]] or [1, 10, 20, 50]
     print("turtlesim benchmark: N turtles moving and drawing, %.0f s window, 62.5 Hz target" % WINDOW_S)
     print("%4s  %9s  %9s  %8s  %10s  %10s  %12s" % ("N", "rate Hz", "worst Hz", "rate %", "jitter ms",
                                                      "p99 gap ms", "CPU% (subs)"))
-    rows = []
     for n in counts:
         r = measure(n, subscribe=True)
-        rows.append(r)
         print("%4d  %9.2f  %9.2f  %7.2f%%  %10.2f  %10.2f  %11.1f%%" % (
             n, r["rate_mean"], r["rate_min"], 100 * r["rate_min"] / 62.5, r["jitter_ms"], r["p99_gap_ms"], r["cpu"]))
         sys.stdout.flush()
-    startups = sorted(r["startup"] for r in rows)
-    print("start-up, launch to /spawn available: median %.2f s over %d runs (upstream C++: %.2f s)"
-          % (startups[len(startups) // 2], len(startups), UPSTREAM_STARTUP_S))
     print("CPU% of one core with nobody subscribed to the poses (as upstream was measured):")
     for n in counts:
         r = measure(n, subscribe=False)

@@ -1,10 +1,15 @@
-"""Start-up of turtlesim_node: Qt (a window with a display, offscreen without), ROS, the ticker."""
+"""Start-up of turtlesim_node: Qt (a window with a display, offscreen without), ROS, the ticker.
+
+The order keeps launch-to-/spawn short (see turtlesim.startup): rospy first, then the Qt
+modules this mode needs, the node, its services.
+"""
 from __future__ import annotations
 
 import os
 import signal
 import sys
 
+from turtlesim import startup
 from turtlesim.constants import CANVAS_PX
 
 
@@ -17,20 +22,24 @@ def main(argv=None) -> int:
     show = has_display() and os.environ.get("QT_QPA_PLATFORM", "") != "offscreen"
     if not show:
         os.environ["QT_QPA_PLATFORM"] = "offscreen"
-    from PyQt5.QtCore import QTimer
-    from PyQt5.QtWidgets import QApplication
+    rospy = startup.import_rospy()  # first: before anything imports genpy
+    if show:
+        from PyQt5.QtWidgets import QApplication as Application
+    else:  # offscreen nothing needs widgets, the largest Qt module to load
+        from PyQt5.QtGui import QGuiApplication as Application
 
-    import rospy
     from turtlesim.node import TurtlesimNode
 
-    app = QApplication(argv[:1])
-    rospy.init_node("turtlesim", argv=argv)
+    app = Application(argv[:1])
+    startup.init_node("turtlesim", argv)
     sim = TurtlesimNode()
     sim.start()
     if not show:
         rospy.spin()
         sim.stop()
         return 0
+
+    from PyQt5.QtCore import QTimer
 
     from turtlesim.window import CanvasWindow
     window = CanvasWindow(sim.render)

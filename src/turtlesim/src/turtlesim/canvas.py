@@ -64,7 +64,7 @@ class Canvas:
         painter = QPainter(image)
         painter.setRenderHint(QPainter.SmoothPixmapTransform)
         for turtle in turtles:
-            icon = self.icons.images[turtle.icon % len(self.icons)]
+            icon = self.icons.image(turtle.icon)
             painter.save()
             painter.translate(to_pixel(turtle.x, turtle.y))
             painter.rotate(-math.degrees(turtle.theta))

@@ -1,7 +1,7 @@
 """Our own turtle drawings: a top view of a turtle facing +x, one shell colour per variant."""
 from __future__ import annotations
 
-from typing import List, Tuple
+from typing import List, Optional, Tuple
 
 from PyQt5.QtCore import QPointF, QRectF, Qt
 from PyQt5.QtGui import QBrush, QColor, QImage, QPainter, QPen, QPolygonF
@@ -48,10 +48,18 @@ def draw_turtle_icon(shell: Tuple[int, int, int], size: int = METER_PX) -> QImag
 
 
 class IconSet:
-    """The turtle images, drawn once; a turtle keeps the index it was given at spawn."""
+    """The turtle images, each drawn the first time it is shown (not at start-up, where time
+    counts); a turtle keeps the index it was given at spawn."""
 
     def __init__(self) -> None:
-        self.images = [draw_turtle_icon(c) for c in SHELL_COLOURS]
+        self._images: List[Optional[QImage]] = [None] * len(SHELL_COLOURS)
 
     def __len__(self) -> int:
-        return len(self.images)
+        return len(self._images)
+
+    def image(self, index: int) -> QImage:
+        """The icon for `index` (taken modulo the number of icons)."""
+        index %= len(self._images)
+        if self._images[index] is None:
+            self._images[index] = draw_turtle_icon(SHELL_COLOURS[index])
+        return self._images[index]

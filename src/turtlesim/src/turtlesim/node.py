@@ -27,6 +27,25 @@ from turtlesim.srv import (Kill, KillResponse, SetPen, SetPenResponse, Spawn, Sp
 from turtlesim.ticker import Ticker
 
 
+def private_params() -> dict:
+    """The node's private parameters (`~name` -> value), read in one call to the master."""
+    params = rospy.get_param("~", {})
+    return params if isinstance(params, dict) else {}
+
+
+def background_from(params: dict) -> RGB:
+    """The background colour from the background_r/g/b params, each forced into 0..255."""
+    values = []
+    for param, default in zip(BACKGROUND_PARAMS, DEFAULT_BACKGROUND_RGB):
+        value = params.get(param, default)
+        try:
+            values.append(min(max(int(value), 0), 255))
+        except (TypeError, ValueError):
+            rospy.logwarn("~%s=%r is not a number; using %d" % (param, value, default))
+            values.append(default)
+    return tuple(values)
+
+
 class TurtleInterface:
     """The ROS face of one turtle, under the namespace of its name."""
 
@@ -83,15 +102,17 @@ class TurtlesimNode:
 
     def __init__(self) -> None:
         self.lock = threading.RLock()
+        params = private_params()  # one master round trip for all of them: start-up time counts
         for param, value in zip(BACKGROUND_PARAMS, DEFAULT_BACKGROUND_RGB):
-            if not rospy.has_param("~" + param):
+            if param not in params:
                 rospy.set_param("~" + param, value)
-        self.frame = TurtleFrame(Canvas(self.background()))
+                params[param] = value
+        self.frame = TurtleFrame(Canvas(background_from(params)))
         self.interfaces: Dict[str, TurtleInterface] = {}
         self.image_pub = rospy.Publisher("~image", Image, queue_size=1)
-        self.image_period = 1.0 / max(float(rospy.get_param("~image_rate", 10.0)), 0.1)
-        self.snapshot_dir = os.path.expanduser(rospy.get_param(
-            "~snapshot_dir", os.path.join(os.environ.get("ROS_HOME", "~/.ros"), "turtlesim")))
+        self.image_period = 1.0 / max(float(params.get("image_rate", 10.0)), 0.1)
+        self.snapshot_dir = os.path.expanduser(params.get(
+            "snapshot_dir", os.path.join(os.environ.get("ROS_HOME", "~/.ros"), "turtlesim")))
         self._snapshots = 0
         self._services = [
             rospy.Service("clear", Empty, self._on_clear),
@@ -127,17 +148,10 @@ class TurtlesimNode:
             rospy.logerr(str(err))
             raise rospy.ServiceException(str(err))
 
-    def background(self) -> RGB:
-        """The background_r/g/b params, each forced into 0..255."""
-        values = []
-        for param, default in zip(BACKGROUND_PARAMS, DEFAULT_BACKGROUND_RGB):
-            value = rospy.get_param("~" + param, default)
-            try:
-                values.append(min(max(int(value), 0), 255))
-            except (TypeError, ValueError):
-                rospy.logwarn("~%s=%r is not a number; using %d" % (param, value, default))
-                values.append(default)
-        return tuple(values)
+    @staticmethod
+    def background() -> RGB:
+        """The background_r/g/b params as they are now."""
+        return background_from(private_params())
 
     # -- the heartbeat --------------------------------------------------------------------
     def tick(self) -> None:

@@ -33,6 +33,7 @@ class NodeProcess:
                  stdout: Union[int, IO, None] = None) -> None:
         """Output goes to `stdout` if given, else to `log_path` (or nowhere)."""
         self.command: List[str] = list(command)
+        self.log_path: Optional[str] = log_path if stdout is None else None
         self._log = open(log_path, "wb") if log_path else subprocess.DEVNULL
         self.proc = subprocess.Popen(self.command, stdin=stdin, stdout=self._log if stdout is None else stdout,
                                      stderr=subprocess.STDOUT, env=unbuffered_env(env), start_new_session=True)
@@ -40,6 +41,13 @@ class NodeProcess:
     @classmethod
     def rosrun(cls, pkg: str, node_type: str, args: Sequence[str] = (), **kwargs) -> "NodeProcess":
         return cls([find_executable(pkg, node_type)] + list(args), **kwargs)
+
+    def output(self) -> str:
+        """What the node has printed so far (empty when its output is not logged to a file)."""
+        if not self.log_path:
+            return ""
+        with open(self.log_path, errors="replace") as f:
+            return f.read()
 
     def running(self) -> bool:
         return self.proc.poll() is None

@@ -60,6 +60,10 @@ class Grader:
         self._progress: Dict[str, _Progress] = {}
         self._done = 0
         self.verdicts: List[Verdict] = []
+        # Packages a student may not replace: everything the course and the system provide,
+        # except the packages the texts make students write.
+        students = {p for m in self.milestones for p in m.packages}
+        self._protected = workspace.course_packages() - students
         self._pool = ThreadPoolExecutor(max(1, options.jobs), thread_name_prefix="grade")
 
     # -- scheduling -------------------------------------------------------------------------
@@ -138,11 +142,22 @@ class Grader:
             if not runnable:
                 return
             ws = self._work_dir(sub.name, "ws")
-            workspace.populate(ws, packages)
-            built = workspace.build(ws, workspace.course_setup())
+            own = [p for p in packages if p.name not in self._protected]
+            left_out = sorted({p.name for p in packages if p.name in self._protected})
+            if left_out:
+                progress.note += "\nleft out (the course provides them): %s" % ", ".join(left_out)
+            setup = workspace.course_setup()
+            workspace.populate(ws, own)
+            built = workspace.build(ws, setup)
             if not built.ok:
                 for m in runnable:
                     self._record(Verdict(sub.name, m, False, verdict.build_failed(built.summary)))
+                return
+            shadowed = workspace.shadowed_modules(ws, self._protected, workspace.course_site(setup))
+            if shadowed:
+                for m in runnable:
+                    self._record(Verdict(sub.name, m, False, "the submission installs Python modules the course "
+                                         "provides, which would replace them: %s (rename them)" % ", ".join(shadowed)))
                 return
             for m in runnable:
                 hints = [h for p in packages if p.name in m.packages for h in submissions.script_problems(p.path)]

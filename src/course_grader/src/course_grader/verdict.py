@@ -2,7 +2,8 @@
 
 Which milestones a submission is graded on: a milestone with `packages` is graded for a
 submission holding at least one of them; a submission holding none of any milestone's packages
-is graded on all of those (each failing with what was expected and what was found); milestones
+is graded on those whose names look misspelled in it (`mychatter` for `my_chatter`), else on all
+of them, each failing with what was expected and what was found; milestones
 without packages (they check the course workspace itself) are graded for the reference only;
 `--only` always grades what it names.
 """
@@ -25,6 +26,8 @@ LOG_TAIL_LINES = 20
 # Terminal control sequences (colours, window titles) that roslaunch and rospy print.
 _ANSI = re.compile(r"\x1b(\[[0-9;?]*[A-Za-z]|\][^\x07\x1b]*(\x07|\x1b\\)?)")
 LOG_TAIL_BYTES = 16 * 1024
+# How alike a found package name must be to the text's to count as a misspelling of it.
+CLOSE_NAME_RATIO = 0.75
 MAX_LOGS = 6
 
 
@@ -63,7 +66,13 @@ def select(milestones: Sequence[Milestone], packages: Iterable[str], only: Optio
         return list(milestones)
     held = set(packages)
     own = [m for m in milestones if m.packages and held & set(m.packages)]
-    return own or [m for m in milestones if m.packages]
+    near = [m for m in milestones if any(_close(p, held) for p in m.packages)]
+    return own or near or [m for m in milestones if m.packages]
+
+
+def _close(name: str, candidates: Iterable[str]) -> List[str]:
+    """The candidates that look like a misspelling of `name` (mychatter, chatter_pkg for chatter)."""
+    return difflib.get_close_matches(name, list(candidates), 1, CLOSE_NAME_RATIO)
 
 
 def missing_package(milestone: Milestone, found: Sequence[Package]) -> Optional[str]:
@@ -80,7 +89,7 @@ def missing_package(milestone: Milestone, found: Sequence[Package]) -> Optional[
         return ("no catkin package found: expected a package named %s (a folder with a package.xml whose "
                 "<name> is %s)" % (expected, expected))
     text = "expected a catkin package named %s, found: %s" % (expected, ", ".join(names + unreadable))
-    close = [c for n in milestone.packages for c in difflib.get_close_matches(n, names, 1, 0.6)]
+    close = [c for n in milestone.packages for c in _close(n, names)]
     if close:
         text += " (the package name comes from package.xml's <name>: rename '%s' to %s, as the text names it)" \
                 % (close[0], expected)

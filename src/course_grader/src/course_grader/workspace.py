@@ -6,12 +6,14 @@ then CMAKE_PREFIX_PATH), never a hard-coded path.
 """
 from __future__ import annotations
 
+import glob
+import importlib.util
 import os
 import re
 import shlex
 import shutil
 import subprocess
-from typing import Dict, List, NamedTuple, Optional, Sequence
+from typing import Dict, Iterable, List, NamedTuple, Optional, Sequence, Set
 
 from course_testkit import isolation
 
@@ -53,6 +55,12 @@ def course_setup() -> str:
                 os.path.join(prefix, "share", "course_grader")):
             return candidate
     raise FileNotFoundError("cannot find the course workspace's setup.bash: set %s" % SETUP_ENV)
+
+
+def course_site(setup_bash: str) -> str:
+    """The Python modules folder of the course workspace whose setup.bash this is."""
+    found = glob.glob(os.path.join(os.path.dirname(setup_bash), "lib", "python3*", "dist-packages"))
+    return found[0] if found else ""
 
 
 def sourced_env(setup_bash: str, base: Optional[Dict[str, str]] = None) -> Dict[str, str]:
@@ -130,3 +138,30 @@ def build(ws: str, setup_bash: str, timeout: float = BUILD_TIMEOUT_S) -> BuildRe
     if code != 0:
         return BuildResult(False, log_path, build_failure_summary(text), None)
     return BuildResult(True, log_path, "", sourced_env(os.path.join(ws, "devel", "setup.bash")))
+
+
+def course_packages() -> Set[str]:
+    """Every ROS package the grader's environment (the course workspace and the system) has."""
+    import rospkg
+    return set(rospkg.RosPack().list())
+
+
+def shadowed_modules(ws: str, protected: Iterable[str], course_site: str) -> List[str]:
+    """Python modules the overlay installs (devel/lib/python3/dist-packages) that would replace one
+    the checks rely on: a module of a protected course package (course_testkit, turtlesim, ...)
+    or any module the grader's own Python finds outside the course workspace (rospy, rostest, ...).
+    Modules of the reference solutions (my_chatter, ...) are the student's to replace."""
+    protected = set(protected)
+    course_modules = set(os.listdir(course_site)) if os.path.isdir(course_site) else set()
+    found = []
+    for site in glob.glob(os.path.join(ws, "devel", "lib", "python3*", "dist-packages")):
+        for entry in sorted(os.listdir(site)):
+            if entry.endswith((".egg-info", ".egg-link", ".pth")) or entry.startswith(("_", ".")):
+                continue
+            name = entry[:-3] if entry.endswith(".py") else entry
+            if name in course_modules:
+                if name in protected:
+                    found.append(name)
+            elif importlib.util.find_spec(name) is not None:
+                found.append(name)
+    return found

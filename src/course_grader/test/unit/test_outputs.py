@@ -69,3 +69,16 @@ def test_build_failure_summary_keeps_the_cmake_error_block():
 
 def test_build_failure_summary_without_known_errors_is_the_end_of_the_log():
     assert build_failure_summary("a\nb\nc\n", lines=2) == "b\nc"
+
+
+def test_shadowed_modules_protect_the_checks_but_not_the_reference(tmp_path):
+    from course_grader.workspace import shadowed_modules
+    site = tmp_path / "ws" / "devel" / "lib" / "python3" / "dist-packages"
+    course = tmp_path / "course_site"
+    for name in ("course_testkit", "rospy", "my_chatter", "student_helpers", "my_chatter-0.0.0.egg-info"):
+        (site / name).mkdir(parents=True)
+    for name in ("course_testkit", "my_chatter"):
+        (course / name).mkdir(parents=True)
+    (site / "json.py").write_text("")
+    found = shadowed_modules(str(tmp_path / "ws"), {"course_testkit", "turtlesim"}, str(course))
+    assert found == ["course_testkit", "json", "rospy"]

@@ -16,6 +16,7 @@ ALL = [CHATTER, CP1, GRAPH]
 def test_select_by_packages_held():
     assert verdict.select(ALL, ["my_chatter"], None, False) == [CP1]
     assert verdict.select(ALL, ["something_else"], None, False) == [CHATTER, CP1]
+    assert verdict.select(ALL, ["chatter_pkg"], None, False) == [CHATTER]
     assert verdict.select(ALL, [], None, True) == ALL
     assert verdict.select(ALL, ["my_chatter"], ["graph_picture"], False) == [GRAPH]
 

@@ -1,10 +1,20 @@
 """Type on a node's keyboard: the node's stdin is the slave side of a pseudo-terminal
-and the test writes key presses (arrow escape sequences) to the master side."""
+and the test writes key presses (arrow escape sequences) to the master side.
+
+A node that puts the terminal in raw mode only while it waits for a key (tty.setraw, which
+flushes what was typed before) loses keys typed in between: with `raw_wait`, press() first
+waits for the terminal to be in raw mode (polled every millisecond), as a person's key press
+lands while the node listens.
+
+A key can also be typed as a line (the key, then Enter) for nodes that read with input():
+the line is started with the terminal's line-kill character (Ctrl+U), so that keys typed
+before without Enter are dropped from the pending line instead of being glued to this one."""
 from __future__ import annotations
 
 import os
 import pty
 import select
+import signal
 import subprocess
 import time
 from typing import Callable, Optional, Sequence, TypeVar
@@ -15,14 +25,30 @@ from course_testkit.waiting import wait_for
 T = TypeVar("T")
 
 ARROWS = {"up": b"\x1b[A", "down": b"\x1b[B", "right": b"\x1b[C", "left": b"\x1b[D"}
+LINE_KILL = b"\x15"  # Ctrl+U: VKILL, erases the pending line in canonical mode
+ENTER = b"\n"
+
+
+def key_bytes(key: str, enter: bool = False) -> bytes:
+    """The bytes a terminal sends for `key` (an arrow name or literal characters), as a line if `enter`."""
+    data = ARROWS.get(key, key.encode())
+    return LINE_KILL + data + ENTER if enter else data
 
 
 class PtyKeyboard:
     """Runs a command with a pseudo-terminal as stdin; press() types into it."""
 
     def __init__(self, command: Sequence[str], log_path: Optional[str] = None, env: Optional[dict] = None,
-                 output_on_pty: bool = False) -> None:
-        """`output_on_pty`: the node also writes to the terminal, and read_until() reads what it printed."""
+                 output_on_pty: bool = False, raw_wait: float = 0.0) -> None:
+        """`output_on_pty`: the node also writes to the terminal, and read_until() reads what it printed.
+        `raw_wait`: how long press() waits for raw mode before typing a single key (see above)."""
+        self.raw_wait = raw_wait
+        self.seen_raw = False
+        self._start = (list(command), log_path, env, output_on_pty)
+        self._launch(log_path)
+
+    def _launch(self, log_path: Optional[str]) -> None:
+        command, _, env, output_on_pty = self._start
         self.master, slave = pty.openpty()
         self.output = b""
         try:
@@ -30,6 +56,16 @@ class PtyKeyboard:
                                     stdout=slave if output_on_pty else None)
         finally:
             os.close(slave)
+
+    def restart(self) -> None:
+        """Stop the node and start the same command again on a fresh terminal (nothing typed
+        before is left in it); its output goes to `<log>-restarted.log`."""
+        self.stop()
+        log_path = self._start[1]
+        if log_path:
+            root, ext = os.path.splitext(log_path)
+            log_path = root + "-restarted" + ext
+        self._launch(log_path)
 
     def read_until(self, text: bytes, timeout: float = 10.0) -> bool:
         """Collect what the node printed on the terminal until `text` shows up (True) or `timeout` passes."""
@@ -58,19 +94,43 @@ class PtyKeyboard:
     def rosrun(cls, pkg: str, node_type: str, args: Sequence[str] = (), **kwargs) -> "PtyKeyboard":
         return cls([find_executable(pkg, node_type)] + list(args), **kwargs)
 
-    def press(self, key: str) -> None:
-        """Type an arrow ('up', 'down', 'left', 'right') or any literal characters."""
-        os.write(self.master, ARROWS.get(key, key.encode()))
+    def raw_mode(self) -> bool:
+        """Whether the terminal delivers keys one by one (canonical mode off), i.e. the node reads keys."""
+        import termios
+        try:
+            return not termios.tcgetattr(self.master)[3] & termios.ICANON
+        except termios.error:
+            return False
 
-    def press_until(self, key: str, condition: Callable[[], T], tries: int = 20, interval: float = 1.0) -> T:
-        """Press `key`, again every `interval` seconds (at most `tries` times), until condition() is
-        truthy; return its last value. A node still starting, or whose subscribers are not all
-        connected yet, can miss a press; stops early if the node exits."""
+    def wait_for_raw_mode(self, timeout: float) -> bool:
+        """Wait up to `timeout` for raw mode; whether it came."""
+        deadline = time.monotonic() + timeout
+        while not self.raw_mode():
+            if time.monotonic() > deadline:
+                return False
+            time.sleep(0.001)
+        self.seen_raw = True
+        return True
+
+    def press(self, key: str, enter: bool = False) -> None:
+        """Type an arrow ('up', 'down', 'left', 'right') or any literal characters; with `enter`,
+        as a line of its own followed by Enter (for nodes reading with input()). A single key
+        waits for raw mode first (up to `raw_wait`; 0.2 s while the node has never been seen in
+        raw mode, as a node reading lines never is)."""
+        if self.raw_wait and not enter:
+            self.wait_for_raw_mode(self.raw_wait if self.seen_raw else min(self.raw_wait, 0.2))
+        os.write(self.master, key_bytes(key, enter))
+
+    def press_until(self, key: str, condition: Callable[[], T], tries: int = 20, interval: float = 1.0,
+                    enter: bool = False) -> T:
+        """Press `key` (as a line if `enter`), again every `interval` seconds (at most `tries`
+        times), until condition() is truthy; return its last value. A node still starting, or
+        whose subscribers are not all connected yet, can miss a press; stops early if the node exits."""
         value = condition()
         for _ in range(tries):
             if value or not self.node.running():
                 break
-            self.press(key)
+            self.press(key, enter)
             value = wait_for(condition, interval)
         return value
 
@@ -79,10 +139,18 @@ class PtyKeyboard:
         import termios
         return bool(termios.tcgetattr(self.master)[3] & termios.ECHO)
 
-    def stop(self, timeout: float = 10.0) -> Optional[int]:
-        code = self.node.stop(timeout)
+    def stop(self, timeout: float = 10.0, grace: float = 1.5) -> Optional[int]:
+        """Ctrl+C; if the node is still running after `grace` seconds (a rospy node blocked in
+        input() only notices Ctrl+C at the next Enter), hang up its terminal so the read returns
+        end-of-file; then NodeProcess.stop (SIGKILL after `timeout`)."""
+        if self.node.running():
+            try:
+                os.killpg(self.node.proc.pid, signal.SIGINT)
+                self.node.proc.wait(grace)
+            except (ProcessLookupError, subprocess.TimeoutExpired):
+                pass
         try:
             os.close(self.master)
         except OSError:
             pass
-        return code
+        return self.node.stop(timeout)

@@ -113,7 +113,8 @@ def log_tails(folder: str, lines: int = LOG_TAIL_LINES) -> str:
         except OSError:
             continue
         tail = [line[:300] for line in text.splitlines()[-lines:]]
-        title = "--- last lines of %s%s ---" % (os.path.basename(path), " (%d bytes)" % size if size > LOG_TAIL_BYTES else "")
+        big = " (%d bytes)" % size if size > LOG_TAIL_BYTES else ""
+        title = "--- last lines of %s%s ---" % (os.path.basename(path), big)
         parts.append("\n".join([title] + (tail or ["(empty)"])))
     return "\n".join(parts)
 

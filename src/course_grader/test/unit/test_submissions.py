@@ -113,3 +113,13 @@ def test_script_problems_name_missing_chmod_and_crlf(tmp_path):
     assert len(problems) == 2
     assert "chatter/scripts/listener.py has Windows line endings" in problems[0] and "python3\\r" in problems[0]
     assert "chatter/scripts/talker.py starts with #! but is not executable" in problems[1]
+
+
+def test_a_folder_holding_only_an_archive_gets_it_unpacked(tmp_path):
+    upload = tmp_path / "submission"
+    upload.mkdir()
+    _zip(upload / "lab2.zip", [("chatter/package.xml", PACKAGE_XML % "chatter", 0o644)])
+    dest = submissions.unpack(Submission("s", str(upload)), str(tmp_path / "out"))
+    assert submissions.find_packages(dest) == []
+    assert submissions.unpack_nested(dest) == [os.path.join(dest, "lab2_unpacked")]
+    assert [p.name for p in submissions.find_packages(dest)] == ["chatter"]

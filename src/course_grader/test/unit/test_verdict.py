@@ -58,5 +58,6 @@ def test_trim_and_capped_output(tmp_path):
 
 
 def test_log_tails_drop_terminal_control_sequences(tmp_path):
-    (tmp_path / "roslaunch.log").write_text("\x1b]2;/ws/a.launch http://localhost:1/\x07\x1b[1mprocess[a-1]: started\x1b[0m\n")
+    title, bold, plain = "\x1b]2;/ws/a.launch http://localhost:1/\x07", "\x1b[1m", "\x1b[0m"
+    (tmp_path / "roslaunch.log").write_text(title + bold + "process[a-1]: started" + plain + "\n")
     assert verdict.log_tails(str(tmp_path)).splitlines()[1] == "process[a-1]: started"

@@ -1,8 +1,10 @@
 """The env-token kill: a child that leaves its session, forks and ignores SIGINT/SIGTERM dies."""
 import os
+import socket
 import subprocess
 import sys
-import time
+
+import pytest
 
 from course_testkit import isolation
 from course_testkit.waiting import wait_for
@@ -23,7 +25,6 @@ os.wait()
 
 
 def test_free_port_is_bindable():
-    import socket
     port = isolation.free_port()
     with socket.socket() as sock:
         sock.bind(("127.0.0.1", port))
@@ -63,3 +64,30 @@ def test_file_size_cap_stops_an_endless_writer(tmp_path):
 
 def test_isolated_command_without_own_network_is_unchanged():
     assert isolation.isolated_command(["rostest", "a", "b.test"], False) == ["rostest", "a", "b.test"]
+
+
+LISTENER = r'''
+import socket, sys, time
+server = socket.socket()
+server.bind(("0.0.0.0", int(sys.argv[1])))
+server.listen()
+client = socket.create_connection(("127.0.0.1", int(sys.argv[1])))  # loopback works inside
+print("up", flush=True)
+time.sleep(60)
+'''
+
+
+@pytest.mark.skipif(not isolation.network_namespace_works(), reason="unshare --net is not allowed here (needs root)")
+def test_own_network_hides_a_port_listening_on_every_interface():
+    port = isolation.free_port()
+    command = isolation.isolated_command([sys.executable, "-c", LISTENER, str(port)], own_network=True)
+    proc = subprocess.Popen(command, stdout=subprocess.PIPE, text=True, start_new_session=True)
+    try:
+        assert proc.stdout.readline().strip() == "up"
+        with socket.socket() as probe:
+            assert probe.connect_ex(("127.0.0.1", port)) != 0, "the run's port is reachable from outside"
+    finally:
+        isolation.kill_run(isolation.new_token(), proc.pid)
+        proc.kill()
+        proc.wait(5)
+        proc.stdout.close()

@@ -11,7 +11,8 @@ ROSUNIT = '''<?xml version="1.0" encoding="utf-8"?>
 <testsuite errors="1" failures="1" name="unittest.suite.TestSuite" tests="3" time="0.001">
 <testcase classname="__main__.T" name="test_a" time="0.0003"><error type="RuntimeError">boom here
 %(trace)s</error></testcase>
-<testcase classname="__main__.T" name="test_b" time="0.0001"><failure type="AssertionError">False is not true : no executable in package chatter publishes /chatter_talk
+<testcase classname="__main__.T" name="test_b" time="0.0001"><failure type="AssertionError">\
+False is not true : no executable in package chatter publishes /chatter_talk
 (found: a.py, b.py)
 %(trace)s</failure></testcase>
 <testcase classname="__main__.T" name="test_c" time="0.0001"/>
@@ -24,11 +25,13 @@ LAUNCHER_OK = '''<?xml version="1.0" encoding="utf-8"?>
 
 LAUNCHER_TIMEOUT = '''<?xml version="1.0" encoding="utf-8"?>
 <testsuite errors="1" failures="0" name="unittest.suite.TestSuite" tests="1" time="5.8">
-<testcase classname="rostest.runner.RosTest" name="testtl" time="5.8"><error type="RLTestTimeoutException">max time [5.0s] allotted for test [tl] of type [chatter/example_pub.py]
+<testcase classname="rostest.runner.RosTest" name="testtl" time="5.8"><error type="RLTestTimeoutException">\
+max time [5.0s] allotted for test [tl] of type [chatter/example_pub.py]
 %s</error></testcase></testsuite>''' % TRACE
 
 LAUNCHER_NO_RESULTS = '''<testsuite errors="0" failures="1" tests="1"><testcase classname="rostest.runner.RosTest"
-name="testcrash" time="0.2"><failure type="AssertionError">False is not true : test [crash] did not generate test results
+name="testcrash" time="0.2"><failure type="AssertionError">\
+False is not true : test [crash] did not generate test results
 %s</failure></testcase></testsuite>''' % TRACE
 
 

@@ -28,6 +28,12 @@ MILESTONE_PACKAGE = "course_milestones"
 REFERENCE = "reference"
 
 
+def _already_said(hint: str, reason: str) -> bool:
+    """True when the check's reason already names this script as lacking chmod +x."""
+    script = hint.split(" ", 1)[0].split("/")[-1]
+    return "not executable" in hint and "chmod" in reason and script in reason
+
+
 class Options(NamedTuple):
     out: str
     jobs: int = 2
@@ -180,7 +186,7 @@ class Grader:
             reason = "" if result.passed else result.summary()
             if not result.passed:
                 hints = hints + verdict.output_capped(artifacts)
-                reason = "\n".join([reason] + [h for h in hints if h.split(" ", 1)[0].split("/")[-1] not in reason])
+                reason = "\n".join([reason] + [h for h in hints if not _already_said(h, reason)])
             verdict.trim_files(artifacts)
             verdict.trim_files(run_dir)
             self._record(Verdict(sub.name, m, result.passed, reason, verdict.log_tails(artifacts),

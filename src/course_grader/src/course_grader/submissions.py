@@ -217,5 +217,5 @@ def script_problems(package_dir: str) -> List[str]:
             if first.rstrip(b"\n").endswith(b"\r"):
                 problems.append("%s has Windows line endings: its #! line asks for '%s\\r', which does not "
                                 "exist (convert it to Unix line endings, e.g. dos2unix %s)"
-                                % (rel, first[2:].strip().decode(errors="replace").split("/")[-1], name))
+                                % (rel, (first[2:].decode(errors="replace").split() or ["?"])[-1], name))
     return problems

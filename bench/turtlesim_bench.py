@@ -165,17 +165,20 @@ def median_p90(values: list) -> tuple:
 
 def print_startup(times: dict) -> None:
     runs = len(next(iter(times.values()))["available"])
-    print("start-up, launch to /spawn: median and p90 of %d runs per path (upstream C++: %.2f s, target <= %.2f s)"
-          % (runs, UPSTREAM_STARTUP_S, STARTUP_TARGET_S))
-    print("%-11s  %-34s  %-34s  %s" % ("launch", "/spawn available (median, p90)", "first /spawn answered", "target"))
+    print("start-up, launch to /spawn: median and p90 of %d runs per path (upstream C++: %.2f s, target <= %.2f s; "
+          "load average %.1f on %d cores)" % (runs, UPSTREAM_STARTUP_S, STARTUP_TARGET_S, os.getloadavg()[0],
+                                             os.cpu_count()))
+    print("%-11s  %-30s  %-30s  %s" % ("launch", "/spawn available: median, p90", "first /spawn answered",
+                                      "target (p90)"))
     for path, got in times.items():
         cells = []
         for key in ("available", "answered"):
             med, p90 = median_p90(got[key])
-            cells.append("%.3f s, %.3f s = %.2fx upstream" % (med, p90, med / UPSTREAM_STARTUP_S))
+            cells.append("%.3f s (%.2fx), %.3f s" % (med, med / UPSTREAM_STARTUP_S, p90))
         med, p90 = median_p90(got["available"])
         verdict = "met" if p90 <= STARTUP_TARGET_S else ("median only" if med <= STARTUP_TARGET_S else "missed")
-        print("%-11s  %-34s  %-34s  %s" % (path, cells[0], cells[1], verdict))
+        print("%-11s  %-30s  %-30s  %s" % (path, cells[0], cells[1], verdict))
+    print("(Nx = median / upstream C++'s %.2f s)" % UPSTREAM_STARTUP_S)
     sys.stdout.flush()
 
 

@@ -7,6 +7,9 @@ the node does:
 - genpy imports numpy (~35 ms) only so that its error diagnosis (`check_type`, run after a
   failed serialisation) accepts numpy scalars. turtlesim never puts numpy values in a
   message, so genpy is imported with numpy hidden, and numpy stays unloaded.
+- rospy imports roslib, whose package search imports catkin's find_in_workspaces, which
+  loads catkin_pkg and pyparsing (~20 ms) for a function turtlesim never calls. roslib gets
+  a stand-in that imports the real module at its first call.
 - `rospy.init_node` polls for its registration with the master every 0.1 s, so it never
   returns in less than 0.1 s. During init_node the poll starts at 1 ms and backs off to
   rospy's own interval: the node goes on as soon as it is registered.
@@ -17,11 +20,13 @@ the node does:
 """
 from __future__ import annotations
 
+import importlib
 import os
 import sys
 import time
+import types
 from contextlib import contextmanager
-from typing import Iterator, List, Optional
+from typing import Callable, Iterator, List, Optional, Sequence
 
 FIRST_POLL_S = 0.001
 """The first wait for the master registration; each further wait doubles, up to rospy's."""
@@ -44,11 +49,39 @@ def hidden_module(name: str) -> Iterator[None]:
             del sys.modules[name]
 
 
+@contextmanager
+def deferred_module(name: str, functions: Sequence[str]) -> Iterator[None]:
+    """Inside the block, `import name` gives a stand-in whose `functions` import the real module
+    at their first call; after the block, imports of `name` get the real module as usual."""
+    if name in sys.modules:
+        yield
+        return
+    stand_in = types.ModuleType(name, "stand-in for %s until one of its functions is called" % name)
+    for function in functions:
+        setattr(stand_in, function, _forwarder(stand_in, function))
+    sys.modules[name] = stand_in
+    try:
+        yield
+    finally:
+        if sys.modules.get(name) is stand_in:
+            del sys.modules[name]
+
+
+def _forwarder(stand_in: types.ModuleType, function: str) -> Callable:
+    def forward(*args, **kwargs):
+        if sys.modules.get(stand_in.__name__) is stand_in:
+            del sys.modules[stand_in.__name__]
+        return getattr(importlib.import_module(stand_in.__name__), function)(*args, **kwargs)
+    forward.__name__ = function
+    return forward
+
+
 def import_rospy():
-    """rospy, with genpy loaded without numpy (see the module docstring)."""
+    """rospy, with genpy loaded without numpy and roslib without catkin_pkg (see the module docstring)."""
     with hidden_module("numpy"):
         import genpy.message  # noqa: F401  (the module that would import numpy)
-    import rospy
+    with deferred_module("catkin.find_in_workspaces", ["find_in_workspaces"]):
+        import rospy
     return rospy
 
 

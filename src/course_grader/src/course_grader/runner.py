@@ -26,6 +26,8 @@ from course_grader.verdict import Verdict
 
 MILESTONE_PACKAGE = "course_milestones"
 REFERENCE = "reference"
+# Under --out, beside the students' folders; no student name starts with "_" (submissions.student_name).
+WORK_DIR = "_work"
 
 
 def _already_said(hint: str, reason: str) -> bool:
@@ -101,7 +103,7 @@ class Grader:
         return os.path.join(self.options.out, student, *parts)
 
     def _work_dir(self, student: str, *parts: str) -> str:
-        return os.path.join(self.options.out, "work", student, *parts)
+        return os.path.join(self.options.out, WORK_DIR, student, *parts)
 
     def _only_for(self, files: Optional[str]) -> Optional[List[str]]:
         if self.options.only:
@@ -115,6 +117,7 @@ class Grader:
 
     def _prepare(self, sub: Submission, reference: bool) -> None:
         progress = self._progress[sub.name]
+        progress.started = time.monotonic()
         selected: List[Milestone] = []
         try:
             if reference:

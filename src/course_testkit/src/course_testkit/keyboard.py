@@ -19,6 +19,7 @@ import subprocess
 import time
 from typing import Callable, Optional, Sequence, TypeVar
 
+from course_testkit.isolation import descendants
 from course_testkit.nodes import NodeProcess, find_executable
 from course_testkit.waiting import wait_for
 
@@ -142,7 +143,20 @@ class PtyKeyboard:
     def stop(self, timeout: float = 10.0, grace: float = 1.5) -> Optional[int]:
         """Ctrl+C; if the node is still running after `grace` seconds (a rospy node blocked in
         input() only notices Ctrl+C at the next Enter), hang up its terminal so the read returns
-        end-of-file; then NodeProcess.stop (SIGKILL after `timeout`)."""
+        end-of-file; then NodeProcess.stop (SIGKILL after `timeout`). Processes started below it
+        in sessions of their own (roslaunch starts every node with setsid) and still alive then
+        are killed too."""
+        tree = descendants(self.node.proc.pid) if self.node.running() else []
+        try:
+            return self._stop(timeout, grace)
+        finally:
+            for pid in tree:
+                try:
+                    os.kill(pid, signal.SIGKILL)
+                except ProcessLookupError:
+                    pass
+
+    def _stop(self, timeout: float, grace: float) -> Optional[int]:
         if self.node.running():
             try:
                 os.killpg(self.node.proc.pid, signal.SIGINT)

@@ -1,5 +1,6 @@
 """PtyKeyboard against small programs (no ROS): lines with Enter, raw-mode waiting for a reader that
 flushes what was typed between keys, and a restart on a fresh terminal."""
+import os
 import sys
 import time
 
@@ -89,3 +90,25 @@ def test_restart_runs_the_command_again(tmp_path):
         assert wait_lines(out, 1) == ["hello"]
     finally:
         keyboard.stop()
+
+
+def test_stop_ends_children_in_sessions_of_their_own(tmp_path):
+    pid_file = tmp_path / "child.pid"
+    spawner = ("import subprocess, sys, time\n"
+               "child = subprocess.Popen(['sleep', '300'], start_new_session=True)\n"
+               "open(sys.argv[1], 'w').write(str(child.pid))\n"
+               "time.sleep(300)\n")
+    keyboard = PtyKeyboard([sys.executable, "-c", spawner, str(pid_file)])
+    deadline = time.monotonic() + 10
+    while not (pid_file.exists() and pid_file.read_text()) and time.monotonic() < deadline:
+        time.sleep(0.02)
+    child = int(pid_file.read_text())
+    keyboard.stop()
+    deadline = time.monotonic() + 5
+    while os.path.exists("/proc/%d" % child) and time.monotonic() < deadline:
+        with open("/proc/%d/stat" % child) as f:
+            if f.read().rsplit(")", 1)[1].split()[0] == "Z":  # killed, waiting for init to reap it
+                break
+        time.sleep(0.02)
+    else:
+        assert not os.path.exists("/proc/%d" % child), "the setsid child outlived stop()"

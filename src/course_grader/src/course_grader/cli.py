@@ -16,7 +16,7 @@ import os
 import shutil
 import sys
 import time
-from typing import List, Optional
+from typing import List, Optional, Set, Tuple
 
 from course_milestones.registry import MILESTONES
 
@@ -36,7 +36,8 @@ def parse(argv: Optional[List[str]]) -> argparse.Namespace:
     parser.add_argument("--class", dest="class_dir", help="a folder whose every entry is one submission")
     parser.add_argument("--jobs", "-j", type=int, default=DEFAULT_JOBS,
                         help="milestone runs at once, across submissions (default %(default)s)")
-    parser.add_argument("--only", action="append", metavar="M", help="grade only milestone M (repeatable)")
+    parser.add_argument("--only", action="extend", nargs="+", metavar="M",
+                        help="grade only these milestones (--only a b, or --only a --only b)")
     parser.add_argument("--only-from", metavar="FILE",
                         help="grade each submission on the milestones named (as keys) in its own JSON FILE")
     parser.add_argument("--out", default="grades", help="output folder (default ./grades)")
@@ -48,13 +49,23 @@ def parse(argv: Optional[List[str]]) -> argparse.Namespace:
     return parser.parse_args(argv)
 
 
+def split_only(only: Optional[List[str]], names: Set[str]) -> Tuple[Optional[List[str]], List[str]]:
+    """`--only chatter alice.zip`: the words after --only that are no milestone but an existing
+    path are submissions. Returns (milestones or None, submissions)."""
+    paths = [o for o in only or [] if o not in names and os.path.exists(o)]
+    return [o for o in only or [] if o not in paths] or None, paths
+
+
 def main(argv: Optional[List[str]] = None) -> int:
     opts = parse(argv)
     if opts.list:
         for m in MILESTONES:
             print("%-18s %5g pts  %-24s %-20s %s" % (m.name, m.points, m.text, m.test_file, " ".join(m.packages)))
         return 0
-    unknown = sorted(set(opts.only or []) - {m.name for m in MILESTONES})
+    names = {m.name for m in MILESTONES}
+    opts.only, more = split_only(opts.only, names)
+    opts.submissions += more
+    unknown = sorted(set(opts.only or []) - names)
     if unknown:
         print("unknown milestone(s): %s (see --list)" % ", ".join(unknown), file=sys.stderr)
         return 2

@@ -28,6 +28,7 @@ class Layout(NamedTuple):
     keys: Dict[str, Tuple[str, ...]]
 
 
+ARROW_KEYS = ("up", "down", "left", "right")
 LAYOUTS: Tuple[Layout, ...] = (
     Layout("arrows", {FORWARD: ("up",), BACKWARD: ("down",), LEFT: ("left",), RIGHT: ("right",)}),
     Layout("w/a/s/d", {FORWARD: ("w",), BACKWARD: ("s", "x"), LEFT: ("a",), RIGHT: ("d",)}),
@@ -35,18 +36,6 @@ LAYOUTS: Tuple[Layout, ...] = (
     Layout("i/j/k/l", {FORWARD: ("i",), BACKWARD: ("k", ","), LEFT: ("j",), RIGHT: ("l",)}),
     Layout("keypad 8/4/2/6", {FORWARD: ("8",), BACKWARD: ("2", "5"), LEFT: ("4",), RIGHT: ("6",)}),
 )
-
-
-ARROW_KEYS = ("up", "down", "left", "right")
-
-
-def stale_bytes_risk(pressed: Sequence[Probe], probe: Probe) -> bool:
-    """Whether `probe` (a single key) may be read wrong because an arrow key pressed before went
-    unanswered. A node reading keys with select() and sys.stdin.read(1) takes the arrow's three
-    bytes into Python's buffer, uses one and leaves two, which it reads on the next key presses
-    instead of those keys: a node that does not use arrows must be started afresh before other
-    keys are tried."""
-    return len(probe.key) == 1 and any(p.key in ARROW_KEYS and not p.enter for p in pressed)
 
 
 def answers(direction: str, linear_x: float, angular_z: float, eps: float = 1e-6) -> bool:
@@ -59,7 +48,7 @@ def answers(direction: str, linear_x: float, angular_z: float, eps: float = 1e-6
 
 def key_label(key: str, enter: bool = False) -> str:
     """How a key is named to the student: 'up', 'w', 'w + Enter'."""
-    name = key if key in ("up", "down", "left", "right") else repr(key)
+    name = key if key in ARROW_KEYS else repr(key)
     return name + (" + Enter" if enter else "")
 
 
@@ -84,6 +73,15 @@ class Probe(NamedTuple):
     direction: str
     key: str
     enter: bool
+
+
+def stale_bytes_risk(pressed: Sequence[Probe], probe: Probe) -> bool:
+    """Whether `probe` (a single key) may be read wrong because an arrow key pressed before went
+    unanswered. A node reading keys with select() and sys.stdin.read(1) takes the arrow's three
+    bytes into Python's buffer, uses one and leaves two, which it reads on the next key presses
+    instead of those keys: a node that does not use arrows must be started afresh before other
+    keys are tried."""
+    return len(probe.key) == 1 and any(p.key in ARROW_KEYS and not p.enter for p in pressed)
 
 
 class Outcome(NamedTuple):
@@ -133,7 +131,8 @@ class KeyMapSearch:
     The first that answers, and answers again when pressed once more (a slow answer to the
     previous key must not pass for this one's; the very first press needs no second), fixes the
     layout and whether Enter is needed; then the backward, left and right keys of that layout are
-    tried, each up to `tries` times while it does not answer (a press can be lost). `first`, a key map found before (e.g. on the same node under another launch file), is tried first.
+    tried, each up to `tries` times while it does not answer (a press can be lost). `first`, a key
+    map found before (e.g. on the same node under another launch file), is tried first.
     """
 
     def __init__(self, layouts: Sequence[Layout] = LAYOUTS, first: Optional[KeyMap] = None,

@@ -31,6 +31,14 @@ def load(path: str) -> roslaunch.config.ROSLaunchConfig:
     return roslaunch.config.load_config_default([path], None)
 
 
+ROSLAUNCH_OWN = ("/rosdistro", "/rosversion", "/run_id")
+
+
+def params(config: roslaunch.config.ROSLaunchConfig) -> Dict[str, object]:
+    """Every parameter the file sets (global, in groups and private to its nodes), not roslaunch's own."""
+    return {key: p.value for key, p in config.params.items() if key not in ROSLAUNCH_OWN}
+
+
 def params_named(config: roslaunch.config.ROSLaunchConfig, basename: str) -> Dict[str, object]:
     """Every parameter the file sets whose last name part is `basename` (global or private)."""
     return {key: p.value for key, p in config.params.items() if key.rstrip("/").split("/")[-1] == basename}

@@ -156,3 +156,19 @@ def test_moved_along_heading_and_turns():
     assert not km.moved(km.FORWARD, start, (5.3, 5.0, math.pi / 2), 0.05, 0.05)
     assert km.moved(km.LEFT, (0, 0, 3.1), (0, 0, -3.1), 0.05, 0.05)  # across the wrap
     assert km.moved(km.RIGHT, (0, 0, 0.2), (0, 0, 0.0), 0.05, 0.05)
+
+
+def test_stale_bytes_risk_after_an_unanswered_arrow():
+    up, w, w_line = km.Probe(km.FORWARD, "up", False), km.Probe(km.FORWARD, "w", False), km.Probe(km.FORWARD, "w", True)
+    assert km.stale_bytes_risk([up], w) and km.stale_bytes_risk([up], w_line)
+    assert not km.stale_bytes_risk([], w)
+    assert not km.stale_bytes_risk([km.Probe(km.FORWARD, "up", True)], w)  # a line: Ctrl+U dropped it
+    assert not km.stale_bytes_risk([up], km.Probe(km.BACKWARD, "down", False))
+
+
+def test_skip_drops_the_next_probe_unpressed():
+    s = km.KeyMapSearch()
+    s.record(s.next_probe(), km.Outcome())  # up: nothing
+    assert s.next_probe() == km.Probe(km.FORWARD, "up", True)
+    s.skip()
+    assert s.next_probe() == km.Probe(km.FORWARD, "w", False) and s.result().presses == 1

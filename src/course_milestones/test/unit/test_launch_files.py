@@ -23,6 +23,8 @@ def test_params_and_node(tmp_path):
     config = lf.load(str(path))
     assert lf.params_named(config, "linear_scale") == {"/linear_scale": 1.0, "/bot/teleop/linear_scale": 3.0}
     assert lf.params_with_value(config, ("cmd_vel", "/cmd_vel")) == {"/cmd_vel_topic_name": "/cmd_vel"}
+    assert set(lf.params(config)) == {"/linear_scale", "/angular_scale", "/cmd_vel_topic_name",
+                                      "/bot/teleop/linear_scale"}
     node = lf.node_named(config, "/bot/teleop")
     assert node is not None and lf.node_named(config, "/teleop") is None
     command, env = lf.node_command(node)

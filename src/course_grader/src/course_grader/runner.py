@@ -30,10 +30,24 @@ REFERENCE = "reference"
 WORK_DIR = "_work"
 
 
+def longest_first(milestones: Sequence[Milestone], durations: Dict[str, float]) -> List[Milestone]:
+    """The milestones, those that took longest last time first (unknown ones before all), so the
+    last runs to start are short ones and the runs at once end together."""
+    return sorted(milestones, key=lambda m: -durations.get(m.name, float("inf")))
+
+
 def _already_said(hint: str, reason: str) -> bool:
     """True when the check's reason already names this script as lacking chmod +x."""
     script = hint.split(" ", 1)[0].split("/")[-1]
     return "not executable" in hint and "chmod" in reason and script in reason
+
+
+def _load_json(path: str) -> Dict:
+    try:
+        with open(path) as f:
+            return dict(json.load(f))
+    except (OSError, ValueError, TypeError):
+        return {}
 
 
 class Options(NamedTuple):
@@ -72,6 +86,8 @@ class Grader:
         # except the packages the texts make students write.
         students = {p for m in self.milestones for p in m.packages}
         self._protected = workspace.course_packages() - students
+        self._durations_path = os.path.join(options.out, WORK_DIR, "durations.json")
+        self._durations = _load_json(self._durations_path)
         self._pool = ThreadPoolExecutor(max(1, options.jobs), thread_name_prefix="grade")
 
     # -- scheduling -------------------------------------------------------------------------
@@ -96,6 +112,10 @@ class Grader:
             while self._pending:
                 self._idle.wait()
         self._pool.shutdown()
+        self._durations.update({v.milestone.name: round(v.elapsed, 1) for v in self.verdicts if v.elapsed})
+        os.makedirs(os.path.dirname(self._durations_path), exist_ok=True)
+        with open(self._durations_path, "w") as f:
+            json.dump(self._durations, f, indent=1, sort_keys=True)
         return self.verdicts
 
     # -- one submission ---------------------------------------------------------------------
@@ -123,7 +143,7 @@ class Grader:
             if reference:
                 selected = verdict.select(self.milestones, [], self._only_for(None), True)
                 self._expect(sub, len(selected))
-                for m in selected:
+                for m in longest_first(selected, self._durations):
                     self._submit(self._run, sub, m, dict(os.environ), [])
                 return
             files = self._work_dir(sub.name, "files")
@@ -168,7 +188,7 @@ class Grader:
                     self._record(Verdict(sub.name, m, False, "the submission installs Python modules the course "
                                          "provides, which would replace them: %s (rename them)" % ", ".join(shadowed)))
                 return
-            for m in runnable:
+            for m in longest_first(runnable, self._durations):
                 hints = [h for p in packages if p.name in m.packages for h in submissions.script_problems(p.path)]
                 self._submit(self._run, sub, m, built.env, hints)
         except Exception:  # noqa: BLE001 - the grader's own failure is this submission's verdict

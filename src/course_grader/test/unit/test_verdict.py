@@ -61,3 +61,8 @@ def test_log_tails_drop_terminal_control_sequences(tmp_path):
     title, bold, plain = "\x1b]2;/ws/a.launch http://localhost:1/\x07", "\x1b[1m", "\x1b[0m"
     (tmp_path / "roslaunch.log").write_text(title + bold + "process[a-1]: started" + plain + "\n")
     assert verdict.log_tails(str(tmp_path)).splitlines()[1] == "process[a-1]: started"
+
+
+def test_longest_first_puts_unknown_then_slow_milestones_first():
+    from course_grader.runner import longest_first
+    assert longest_first(ALL, {"chatter": 4.0, "checkpoint1": 7.5}) == [GRAPH, CP1, CHATTER]

@@ -46,6 +46,9 @@ class GazeboServer:
         self._next_states = 0.0
         if world_desc is not None:
             self._load_world_models(world_desc)
+        # Every attribute a callback reads is set before the first topic or service goes up: a
+        # spawn request can arrive the moment its service is advertised.
+        self.viewer = self._open_viewer() if gui else None
         self.clock_pub = rospy.Publisher("/clock", Clock, queue_size=10)
         self.model_states_pub = rospy.Publisher("~model_states", ModelStates, queue_size=1)
         self.link_states_pub = rospy.Publisher("~link_states", LinkStates, queue_size=1)
@@ -61,7 +64,6 @@ class GazeboServer:
         rospy.Service("~unpause_physics", Empty, self._unpause)
         rospy.Service("~reset_world", Empty, self._reset_world)
         rospy.Service("~reset_simulation", Empty, self._reset_simulation)
-        self.viewer = self._open_viewer() if gui else None
 
     def _load_world_models(self, desc) -> None:
         for inc in desc.includes:

@@ -1,0 +1,56 @@
+"""The grader's scheduling and outputs, with rostest and catkin_make replaced by fakes: every
+submission gets one verdict per selected milestone, a results.json and one progress line,
+whatever goes wrong with another submission."""
+import json
+
+from course_milestones.milestone import Milestone
+from course_testkit.rostest_runner import RostestResult
+
+from course_grader import runner, workspace
+from course_grader.submissions import Submission
+from course_grader.workspace import BuildResult
+
+CHATTER = Milestone("chatter", "Example pub/sub", "002 section 2", "chatter.test", ("chatter",))
+CP1 = Milestone("checkpoint1", "TimestampString", "002 checkpoint 1", "checkpoint1.test", ("my_chatter",))
+PACKAGE_XML = '<package format="2"><name>%s</name></package>'
+
+
+def _fake_rostest(pkg, test_file, env=None, results_dir=None, timeout=None, **_):
+    passed = test_file == "chatter.test"
+    failures = [] if passed else [("test_cp1", "nothing on /user_messages")]
+    return RostestResult(passed, 1, failures, None, "rostest output", 1.5, False, 0 if passed else 1, results_dir)
+
+
+def _folder(tmp_path, name, packages):
+    for pkg in packages:
+        (tmp_path / name / "src" / pkg).mkdir(parents=True)
+        (tmp_path / name / "src" / pkg / "package.xml").write_text(PACKAGE_XML % pkg)
+    (tmp_path / name).mkdir(exist_ok=True)
+    return Submission(name, str(tmp_path / name))
+
+
+def test_each_submission_gets_its_verdicts_and_one_progress_line(tmp_path, monkeypatch):
+    monkeypatch.setattr(runner, "run_rostest", _fake_rostest)
+    monkeypatch.setattr(workspace, "course_packages", lambda: {"turtlesim", "course_testkit"})
+    monkeypatch.setattr(workspace, "course_setup", lambda: "/nowhere/setup.bash")
+    monkeypatch.setattr(workspace, "course_site", lambda setup: "")
+    monkeypatch.setattr(workspace, "build", lambda ws, setup: BuildResult(True, "", "", {"PATH": "/usr/bin"}))
+    (tmp_path / "broken.zip").write_bytes(b"not a zip")
+    subs = [_folder(tmp_path, "alice", ["chatter", "my_chatter", "turtlesim"]),
+            _folder(tmp_path, "bob", ["mychatter"]),
+            Submission("broken", str(tmp_path / "broken.zip"))]
+    lines = []
+    out = tmp_path / "out"
+    grader = runner.Grader([CHATTER, CP1], runner.Options(str(out), jobs=2), say=lines.append)
+    verdicts = grader.grade(subs)
+    assert len(lines) == 3 and all("points" in line for line in lines)
+    by = {(v.student, v.milestone.name): v for v in verdicts}
+    assert by["alice", "chatter"].passed and not by["alice", "checkpoint1"].passed
+    assert "nothing on /user_messages" in by["alice", "checkpoint1"].reason
+    assert "rename 'mychatter' to 'my_chatter'" in by["bob", "checkpoint1"].reason
+    assert "cannot be unpacked" in by["broken", "chatter"].reason
+    alice = json.loads((out / "alice" / "results.json").read_text())
+    assert alice["score"] == 10.0 and [t["status"] for t in alice["tests"]] == ["passed", "failed"]
+    assert "left out (the course provides them): turtlesim" in alice["output"]
+    assert (out / "bob" / "checkpoint1" / "junit.xml").is_file()
+    assert json.loads((out / "_work" / "durations.json").read_text())["chatter"] == 1.5

@@ -1,0 +1,125 @@
+#!/usr/bin/env python3
+"""Trust and speed of the grader (issue "Grade a class", item 8), as figures, never as assertions.
+
+- Trust: the reference solutions graded RUNS times in a row (`rosrun course_grader grade`, every
+  milestone). Every milestone must pass on the reference, so any failure is a wrong verdict; the
+  bench counts them per milestone and prints their reasons.
+- Speed: the wall time of each reference grading (one submission's full milestone set; target
+  <= 60 s on 2 cores), and a class of N copies of the reference's exercise packages graded as
+  student submissions (target: 30 in <= 30 min), with the grader's progress line per submission.
+- turtlesim start-up (launch to /spawn; target <= 0.45 s): see bench/turtlesim_bench.py --startup.
+
+    python3 bench/grade_bench.py [--runs 20] [--class-size 30] [--jobs N]
+    python3 bench/grade_bench.py --runs 0 --class-size 5     # only a small class
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from collections import Counter
+from pathlib import Path
+from typing import Dict, List, Tuple
+
+ROOT = Path(__file__).resolve().parents[1]
+REFERENCE_TARGET_S = 60.0
+CLASS_TARGET_S_PER_30 = 30 * 60.0
+
+
+def grade(args: List[str], out: Path) -> Tuple[float, str]:
+    """Run the grader; its wall time and output (streamed to our stdout as it comes)."""
+    started = time.monotonic()
+    proc = subprocess.Popen(["rosrun", "course_grader", "grade", "--out", str(out)] + args,
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    lines = []
+    for line in proc.stdout:
+        lines.append(line)
+        print("    " + line.rstrip(), flush=True)
+    proc.wait()
+    return time.monotonic() - started, "".join(lines)
+
+
+def verdicts(out: Path) -> Dict[Tuple[str, str], Dict]:
+    """(student, milestone) -> the Gradescope test entry, from every results.json under `out`."""
+    found = {}
+    for results in out.glob("*/results.json"):
+        for test in json.loads(results.read_text())["tests"]:
+            found[(results.parent.name, test["name"].split(":", 1)[0])] = test
+    return found
+
+
+def reference_runs(runs: int, jobs: List[str]) -> None:
+    times: List[float] = []
+    wrong: Counter = Counter()
+    reasons: Dict[str, List[str]] = {}
+    graded = 0
+    for i in range(runs):
+        out = Path(tempfile.mkdtemp(prefix="grade-bench-"))
+        try:
+            print("reference run %d/%d" % (i + 1, runs), flush=True)
+            elapsed, _ = grade(jobs, out)
+            times.append(elapsed)
+            for (_, milestone), test in verdicts(out).items():
+                graded += 1
+                if test["status"] != "passed":
+                    wrong[milestone] += 1
+                    reasons.setdefault(milestone, []).append(test["output"].strip().splitlines()[0][:200]
+                                                             if test["output"].strip() else "(no output)")
+        finally:
+            shutil.rmtree(out, ignore_errors=True)
+    print("\nreference graded %d times: %d milestone verdicts, %d wrong" % (runs, graded, sum(wrong.values())))
+    for milestone, count in wrong.most_common():
+        print("  %-16s %d wrong: %s" % (milestone, count, " | ".join(reasons[milestone][:3])))
+    if times:
+        print("one submission, full milestone set: median %.1f s, min %.1f s, max %.1f s (target <= %.0f s)"
+              % (statistics.median(times), min(times), max(times), REFERENCE_TARGET_S))
+
+
+def student_packages() -> List[str]:
+    from course_milestones.registry import MILESTONES
+    return sorted({p for m in MILESTONES for p in m.packages})
+
+
+def class_run(size: int, jobs: List[str]) -> None:
+    scratch = Path(tempfile.mkdtemp(prefix="grade-bench-class-"))
+    try:
+        classroom = scratch / "class"
+        packages = student_packages()
+        for n in range(1, size + 1):
+            for pkg in packages:
+                shutil.copytree(ROOT / "src" / pkg, classroom / ("student%02d" % n) / pkg, symlinks=True)
+        print("class of %d submissions (packages: %s)" % (size, " ".join(packages)), flush=True)
+        elapsed, _ = grade(["--class", str(classroom)] + jobs, scratch / "grades")
+        results = verdicts(scratch / "grades")
+        failed = sorted("%s/%s" % key for key, test in results.items() if test["status"] != "passed")
+        print("\nclass of %d: %.1f s (%.1f s per submission; 30 would take %.1f min, target <= %.0f min); "
+              "%d verdicts, %d wrong%s" % (size, elapsed, elapsed / size, elapsed / size * 30 / 60,
+                                           CLASS_TARGET_S_PER_30 / 60, len(results), len(failed),
+                                           (": " + ", ".join(failed)) if failed else ""))
+    finally:
+        shutil.rmtree(scratch, ignore_errors=True)
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--runs", type=int, default=20, help="reference gradings in a row (default 20)")
+    parser.add_argument("--class-size", type=int, default=30, help="submissions in the class run (0: none)")
+    parser.add_argument("--jobs", type=int, help="the grader's --jobs (default: the grader's own)")
+    opts = parser.parse_args()
+    jobs = ["--jobs", str(opts.jobs)] if opts.jobs else []
+    print("machine: %d cores, load average %s" % (os.cpu_count() or 0, " ".join("%.2f" % x for x in os.getloadavg())))
+    if opts.runs:
+        reference_runs(opts.runs, jobs)
+    if opts.class_size:
+        class_run(opts.class_size, jobs)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,9 +1,10 @@
-"""Find what a course text leaves to the student: which executables a package has, and which of
-them publishes, subscribes or serves what once it runs.
+"""What a course text leaves to the student, as far as it can be seen without running anything of
+theirs: which executables a package has (its launch files: course_milestones.launch_files), and
+what the master says each running node registered.
 
 A milestone never assumes our reference's script names. It lists the package's executables the
-way rosrun would find them and, where the text does not say which is which, starts each one and
-asks the master what it registered.
+way rosrun would find them and, where the text does not say which is which, starts each one
+(course_milestones.students) and asks the master, through this module, what it registered.
 """
 from __future__ import annotations
 
@@ -16,11 +17,15 @@ import rosgraph
 import rospkg
 from catkin.find_in_workspaces import find_in_workspaces
 
+# Our caller id towards the master, in every query the checks make.
+CALLER = "/course_milestone"
 # Files rosrun could run that are never a student's node.
 _IGNORED_SUFFIXES = (".pyc", ".so", ".a", ".o", ".cmake", ".txt", ".xml", ".md", ".launch", ".test",
                      ".msg", ".srv", ".action", ".yaml", ".yml", ".png", ".sh~")
 _IGNORED_DIRS = {"CMakeFiles", ".git", "__pycache__", "test", "tests", "msg", "srv", "action", "cfg"}
 _IGNORED_NAMES = {"setup.py", "__init__.py"}
+# What every rospy node registers: not worth naming to a student.
+_ROUTINE = ("/rosout", "/get_loggers", "/set_logger_level")
 
 
 def package_dir(pkg: str) -> str:
@@ -52,6 +57,39 @@ def _is_executable(path: str) -> bool:
     return stat.S_ISREG(mode) and bool(mode & (stat.S_IXUSR | stat.S_IXGRP | stat.S_IXOTH))
 
 
+def not_executable(pkg: str) -> List[str]:
+    """Python scripts in the package that rosrun cannot run because they lack the executable bit
+    (the text's `chmod +x *.py` step)."""
+    found = []
+    for dirpath, dirnames, filenames in os.walk(package_dir(pkg)):
+        dirnames[:] = [d for d in dirnames if not d.startswith(".") and d not in ("test", "tests", "build")]
+        for name in filenames:
+            path = os.path.join(dirpath, name)
+            if name.endswith(".py") and name not in _IGNORED_NAMES and not os.access(path, os.X_OK) \
+                    and _has_main(path):
+                found.append(name)
+    return sorted(found)
+
+
+def _has_main(path: str) -> bool:
+    try:
+        with open(path, errors="replace") as f:
+            return "__main__" in f.read()
+    except OSError:
+        return False
+
+
+def chmod_hint(pkg: str) -> str:
+    """' (not executable: a.py, b.py: run chmod +x on them)' when there are such scripts, else ''."""
+    names = not_executable(pkg)
+    return " (not executable: %s: run chmod +x on them)" % ", ".join(names) if names else ""
+
+
+def describe(names: Sequence[str]) -> str:
+    """A short list of executable names for messages to the student."""
+    return ", ".join(os.path.basename(n) for n in names) or "(none)"
+
+
 class Registration(NamedTuple):
     """What one node registered with the master."""
 
@@ -61,7 +99,20 @@ class Registration(NamedTuple):
     services: Tuple[str, ...]
 
 
-def system_state(caller_id: str = "/course_milestone") -> Dict[str, Registration]:
+def own_names(names: Iterable[str]) -> List[str]:
+    """`names` (topics, services) without those every rospy node registers."""
+    return [n for n in names if not n.endswith(_ROUTINE)]
+
+
+def publishes(topic: str) -> Callable[[Registration], bool]:
+    return lambda reg: topic in reg.publishes
+
+
+def subscribes(topic: str) -> Callable[[Registration], bool]:
+    return lambda reg: topic in reg.subscribes
+
+
+def system_state(caller_id: str = CALLER) -> Dict[str, Registration]:
     """Every node's publications, subscriptions and services, from the master."""
     pubs, subs, srvs = rosgraph.Master(caller_id).getSystemState()
     table: Dict[str, Dict[str, Set[str]]] = {}
@@ -74,7 +125,31 @@ def system_state(caller_id: str = "/course_milestone") -> Dict[str, Registration
             for node, k in table.items()}
 
 
-def new_nodes(before: Iterable[str], caller_id: str = "/course_milestone") -> Dict[str, Registration]:
+def registrations_with_uris() -> List[Tuple[Registration, str]]:
+    """Every registered node with its XML-RPC URI (nodes that went away meanwhile are left out).
+    A node started under a name already taken replaces the old one: the name stays, the URI
+    changes, so a node is told apart from its predecessor by URI."""
+    master = rosgraph.Master(CALLER)
+    found = []
+    for node, reg in system_state().items():
+        try:
+            found.append((reg, master.lookupNode(node)))
+        except Exception:  # noqa: BLE001 - the node went away meanwhile
+            continue
+    return found
+
+
+def node_uris() -> Dict[str, str]:
+    """Every registered node's name -> XML-RPC URI."""
+    return {reg.node: uri for reg, uri in registrations_with_uris()}
+
+
+def new_registrations(before: Dict[str, str]) -> List[Registration]:
+    """Registrations of nodes that were not in `before` (name -> URI), or are there under a new URI."""
+    return [reg for reg, uri in registrations_with_uris() if before.get(reg.node) != uri]
+
+
+def new_nodes(before: Iterable[str], caller_id: str = CALLER) -> Dict[str, Registration]:
     """Nodes registered now that were not in `before`."""
     known = set(before)
     return {n: r for n, r in system_state(caller_id).items() if n not in known}
@@ -95,11 +170,6 @@ def wait_for_registration(before: Iterable[str], condition: Callable[[Registrati
         time.sleep(0.05)
 
 
-def topic_types(caller_id: str = "/course_milestone") -> Dict[str, str]:
+def topic_types(caller_id: str = CALLER) -> Dict[str, str]:
     """Topic name -> message type as the master knows it (the publisher's declared type)."""
     return dict(rosgraph.Master(caller_id).getTopicTypes())
-
-
-def describe(names: Sequence[str]) -> str:
-    """A short list of executable names for messages to the student."""
-    return ", ".join(os.path.basename(n) for n in names) or "(none)"

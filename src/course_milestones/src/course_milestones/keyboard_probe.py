@@ -1,130 +1,29 @@
-"""The ROS and terminal side of finding a keyboard controller and its key map.
+"""Typing keys into a student's keyboard node and finding its key map.
 
-- start_registering(): start a package's executables one by one (each on its own
-  pseudo-terminal) until one registers what the text asks (e.g. a publisher on /turtle1/cmd_vel);
-  the text names the package, not the script.
-- discover_keymap(): type keys into the node's terminal (KeyMapSearch decides which) and watch
-  its velocity commands; with a Motion, each key found must also move the robot that way (one
-  press per direction in all: the simulated Burger bucks when its commands reverse too often).
+discover_keymap() types keys into the node's terminal (keymap.KeyMapSearch decides which) and
+watches its velocity commands; with a Motion, each key found must also move the robot that way
+(one press per direction in all: the simulated Burger bucks when its commands reverse too often).
+The node itself is started by course_milestones.students (start_registering, Roslaunch).
 """
 from __future__ import annotations
 
 import math
-import os
-import re
-import shutil
 import time
-from typing import Callable, Dict, List, NamedTuple, Optional, Sequence, Tuple
+from typing import Callable, List, NamedTuple, Optional, Tuple
 
 import rosgraph
 
 from course_milestones import keymap as km
-from course_milestones.discovery import Registration, describe, list_executables, system_state
+from course_milestones.discovery import CALLER, node_uris
+from course_milestones.students import REGISTER_TIMEOUT, wait_for_publisher
 from course_testkit.artifacts import artifact_path
 from course_testkit.keyboard import PtyKeyboard
 from course_testkit.recorders import TopicRecorder
 from course_testkit.waiting import wait_for
 
 PROBE_WINDOW = 1.5        # s: how long a key press has to produce its command
-REGISTER_TIMEOUT = 15.0   # s: how long an executable has to register what is asked
 RAW_WAIT = 1.0            # s: how long a key waits for the node's terminal to be in raw mode
-SETTLED = 3.0             # s: a node registered for this long with other topics is not the one asked for
 Pose = Tuple[float, float, float]
-
-
-class Started(NamedTuple):
-    """The executable that registered what was asked, its process and its registration."""
-
-    path: str
-    keyboard: PtyKeyboard
-    registration: Registration
-
-
-def _hinted_first(paths: Sequence[str], hint: str) -> List[str]:
-    pattern = re.compile(hint, re.IGNORECASE)
-    return sorted(paths, key=lambda p: (not pattern.search(os.path.basename(p)), os.path.basename(p)))
-
-
-def _topics(reg: Registration) -> Tuple[str, ...]:
-    return tuple(t for t in reg.publishes + reg.subscribes + reg.services
-                 if t != "/rosout" and not t.endswith(("/get_loggers", "/set_logger_level")))
-
-
-def node_uris() -> Dict[str, str]:
-    """Every registered node's name -> XML-RPC URI. A node started under a name already taken
-    replaces the old one: the name stays, the URI changes, so new nodes are told apart by URI."""
-    master = rosgraph.Master("/course_milestone")
-    uris = {}
-    for node in system_state():
-        try:
-            uris[node] = master.lookupNode(node)
-        except rosgraph.MasterException:
-            pass
-    return uris
-
-
-def new_registrations(before: Dict[str, str]) -> List[Registration]:
-    """Registrations of nodes that were not in `before` (name -> URI), or are there under a new URI."""
-    uris = node_uris()
-    return [reg for name, reg in system_state().items() if name in uris and before.get(name) != uris[name]]
-
-
-def start_registering(pkg: str, args: Sequence[str], wanted: Callable[[Registration], bool], hint: str = "",
-                      log_name: str = "node", timeout: float = REGISTER_TIMEOUT,
-                      ) -> Tuple[Optional[Started], List[str]]:
-    """Start each executable of `pkg` with `args`, on a pseudo-terminal, until one registers a node
-    that satisfies `wanted`; executables whose name matches `hint` go first. Returns it (still
-    running) and, for the failure message, what each other executable did."""
-    tried: List[str] = []
-    for path in _hinted_first(list_executables(pkg), hint):
-        keyboard, found, seen = start_and_wait([path] + list(args), wanted, log_name, timeout)
-        if found is not None:
-            return Started(path, keyboard, found), tried
-        keyboard.stop()
-        tried.append(describe_attempt(os.path.basename(path), keyboard, seen))
-    return None, tried
-
-
-def start_and_wait(command: Sequence[str], wanted: Callable[[Registration], bool], log_name: str,
-                   timeout: float = REGISTER_TIMEOUT, env: Optional[Dict[str, str]] = None,
-                   ) -> Tuple[PtyKeyboard, Optional[Registration], List[Registration]]:
-    """Start one node on a pseudo-terminal and wait until it registers what `wanted` asks; gives up
-    when it exits, after `timeout`, or once it has stayed registered for SETTLED seconds without
-    it. Returns the keyboard (still running), the registration (or None) and what it registered."""
-    before = node_uris()
-    keyboard = PtyKeyboard(command, log_path=artifact_path(log_name), env=env)
-    deadline = time.monotonic() + timeout
-    first_seen: Optional[float] = None
-    while True:
-        seen = new_registrations(before)
-        for reg in seen:
-            if wanted(reg):
-                return keyboard, reg, seen
-        now = time.monotonic()
-        if seen and first_seen is None:
-            first_seen = now
-        settled = first_seen is not None and now - first_seen > SETTLED
-        if now > deadline or settled or not keyboard.node.running():
-            return keyboard, None, seen
-        time.sleep(0.1)
-
-
-def describe_attempt(name: str, keyboard: PtyKeyboard, seen: Sequence[Registration]) -> str:
-    """What a started executable did instead of what was asked, for a failure message."""
-    if seen:
-        return "%s registered %s (%s)" % (name, ", ".join(r.node for r in seen),
-                                          ", ".join(sorted({t for r in seen for t in _topics(r)})) or "no topics")
-    if not keyboard.node.running():
-        return "%s exited with status %s" % (name, keyboard.node.proc.returncode)
-    return "%s registered no node" % name
-
-
-def publishes(topic: str) -> Callable[[Registration], bool]:
-    return lambda reg: topic in reg.publishes
-
-
-def subscribes(topic: str) -> Callable[[Registration], bool]:
-    return lambda reg: topic in reg.subscribes
 
 
 def wait_connected(recorder: TopicRecorder, node: Optional[str] = None, timeout: float = 10.0) -> bool:
@@ -132,7 +31,7 @@ def wait_connected(recorder: TopicRecorder, node: Optional[str] = None, timeout:
     publishes now reaches us. A connection to a node that just died can linger: naming the node
     waits for the new one."""
     try:
-        uri = rosgraph.Master("/course_milestone").lookupNode(node) if node else None
+        uri = rosgraph.Master(CALLER).lookupNode(node) if node else None
     except rosgraph.MasterException:
         return False
 
@@ -253,26 +152,3 @@ def odom_pose(recorder: TopicRecorder) -> Callable[[], Optional[Pose]]:
         p, q = last.pose.pose.position, last.pose.pose.orientation
         return p.x, p.y, math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
     return pose
-
-
-def not_found_message(pkg: str, what: str, tried: Sequence[str]) -> str:
-    executables = list_executables(pkg)
-    if not executables:
-        return "package %s has no executable script (is it chmod +x, in scripts/ or nodes/?)" % pkg
-    return "no executable in package %s %s (found: %s; %s)" % (pkg, what, describe(executables), "; ".join(tried))
-
-
-def launch_in_terminal(pkg: str, launch_file: str, log_name: str) -> PtyKeyboard:
-    """`roslaunch PKG FILE`, exactly as the text types it, with a pseudo-terminal as its keyboard
-    (roslaunch's nodes share its terminal, as in the student's own shell)."""
-    return PtyKeyboard([shutil.which("roslaunch") or "roslaunch", pkg, launch_file], log_path=artifact_path(log_name))
-
-
-def wait_for_publisher(topic: str, keyboard: PtyKeyboard, timeout: float = 30.0,
-                       before: Optional[Dict[str, str]] = None) -> Optional[Registration]:
-    """The first node (not in `before`, name -> URI) that publishes `topic`, while `keyboard`'s
-    process runs; None after `timeout`."""
-    before = before or {}
-    found = wait_for(lambda: [r for r in new_registrations(before) if topic in r.publishes]
-                     or not keyboard.node.running(), timeout)
-    return found[0] if isinstance(found, list) and found else None

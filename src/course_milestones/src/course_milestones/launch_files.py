@@ -1,5 +1,6 @@
-"""A student's launch file as roslaunch reads it: where `roslaunch PKG FILE` finds it, which
-parameters it sets and how it starts a node, without running it.
+"""A student's launch files as roslaunch reads them: which a package has, where `roslaunch PKG FILE`
+finds one, which parameters it sets and how it starts a node, without running it (running it:
+course_milestones.students.Roslaunch).
 
 The launch milestones run the student's file exactly as the text's command does (no extra args);
 this module lets them also start one of its nodes again by itself, with other parameter values,
@@ -7,6 +8,7 @@ to see whether the node really uses them (001 #2.3.7).
 """
 from __future__ import annotations
 
+import os
 import shlex
 from typing import Dict, List, Optional, Tuple
 
@@ -15,7 +17,25 @@ import roslaunch.core
 import roslaunch.rlutil
 import rosgraph.names
 
+from course_milestones.discovery import package_dir
 from course_testkit.nodes import find_executable
+
+
+def names_in(pkg: str) -> List[str]:
+    """Names of the .launch files anywhere in `pkg` (what `roslaunch pkg <TAB>` offers)."""
+    found = []
+    for dirpath, dirnames, filenames in os.walk(package_dir(pkg)):
+        dirnames[:] = [d for d in dirnames if not d.startswith(".")]
+        found.extend(f for f in filenames if f.endswith(".launch"))
+    return sorted(set(found))
+
+
+def missing_launch_file(pkg: str, filename: str) -> str:
+    """A sentence for the student when `filename` is not in `pkg`, or "" when it is."""
+    found = names_in(pkg)
+    if filename in found:
+        return ""
+    return "no launch file %s in package %s (found: %s)" % (filename, pkg, ", ".join(found) or "none")
 
 
 def resolve(pkg: str, name: str) -> Tuple[Optional[str], str]:

@@ -1,0 +1,252 @@
+"""A student's executables and launch files as processes we own: start them, see which of them
+registered what (the text names the package, not the scripts), describe what each did for a
+failure message, and stop them. Every process runs in its own process group, with its output in
+an artifact log (course_testkit.artifacts) that the grader shows the student.
+
+Three ways of starting a student's code, for three kinds of node:
+- Script: with a pipe as stdin, several at once, each registered node tied to the process that
+  started it by the node's pid (XML-RPC getPid): the text's publisher, subscriber or server is
+  whichever script registers it (find_role). Lines can be typed on the pipe (input()).
+- Registered: one at a time on a pseudo-terminal (a keyboard, for nodes reading keys), until one
+  registers what is asked (start_registering); new nodes are told apart by their URI.
+- Roslaunch: `roslaunch PKG FILE` as the text types it, on a pseudo-terminal that every node it
+  starts inherits (a keyboard node in the launch file gets a terminal to read).
+"""
+from __future__ import annotations
+
+import os
+import re
+import signal
+import subprocess
+import time
+import xmlrpc.client
+from typing import Callable, Dict, List, NamedTuple, Optional, Sequence, Tuple
+
+from course_milestones.discovery import (CALLER, Registration, describe as describe_names, list_executables,
+                                         new_registrations, node_uris, own_names, registrations_with_uris)
+from course_testkit.artifacts import artifact_path
+from course_testkit.keyboard import PtyKeyboard
+from course_testkit.nodes import NodeProcess
+from course_testkit.waiting import wait_for
+
+# What rospy prints when the master stops a node because a newer one took its name.
+SAME_NAME = "new node registered with same name"
+REGISTER_TIMEOUT = 15.0   # s: how long an executable on a terminal has to register what is asked
+SETTLED = 3.0             # s: a node registered for this long with other topics is not the one asked for
+# roslaunch escalates SIGINT -> SIGTERM -> SIGKILL on its nodes within ~17 s; stop it within that.
+ROSLAUNCH_STOP_S = 25.0
+
+
+class Script(NamedTuple):
+    """One student executable started with a pipe as stdin; its output is node.output()."""
+
+    path: str
+    node: NodeProcess
+
+    @property
+    def name(self) -> str:
+        return os.path.basename(self.path)
+
+
+def start(path: str, args: Sequence[str] = ()) -> Script:
+    """Start one executable with a pipe as stdin (for typed lines) and its output in an artifact log."""
+    log = artifact_path(os.path.basename(path))
+    return Script(path, NodeProcess([path] + list(args), stdin=subprocess.PIPE, log_path=log))
+
+
+def stop_all(started: Sequence[Script]) -> None:
+    """End of input, then Ctrl+C: a rospy node blocked in input() ignores SIGINT (rospy's handler
+    swallows the KeyboardInterrupt and the read resumes) until its input ends."""
+    for s in started:
+        try:
+            s.node.proc.stdin.close()
+            os.killpg(s.node.proc.pid, signal.SIGINT)  # all at once: each takes a while to shut down
+        except (OSError, ProcessLookupError):
+            pass
+    for s in started:
+        s.node.stop()
+
+
+def registrations_of(started: Script, known: Dict[str, int]) -> List[Registration]:
+    """What the nodes this process (or its children) registered, per node; `known` caches
+    node URI -> process group."""
+    regs = []
+    for reg, uri in registrations_with_uris():
+        if uri not in known:  # by URI: a node started under a name already taken replaces the old one
+            known[uri] = _process_group(uri)
+        if known[uri] == started.node.proc.pid:
+            regs.append(reg)
+    return regs
+
+
+def _process_group(uri: str) -> int:
+    try:
+        _, _, pid = xmlrpc.client.ServerProxy(uri).getPid(CALLER)
+        return os.getpgid(pid)
+    except Exception:  # noqa: BLE001 - the node went away, or is not on this machine
+        return -1
+
+
+def find_role(started: Sequence[Script], condition: Callable[[Registration], bool], timeout: float,
+              known: Dict[str, int], settle: Optional[float] = None) -> Optional[Script]:
+    """The first process with a node whose registration satisfies `condition`; None after `timeout`,
+    once every process has exited, or (with `settle`) once each has had a node registered for
+    `settle` seconds without satisfying it."""
+    deadline = time.monotonic() + timeout
+    first_seen: Dict[int, float] = {}
+    while True:
+        now = time.monotonic()
+        waiting = False
+        for s in started:
+            regs = registrations_of(s, known)
+            if any(condition(r) for r in regs):
+                return s
+            if regs:
+                first_seen.setdefault(s.node.proc.pid, now)
+            seen = first_seen.get(s.node.proc.pid)
+            if s.node.running() and (settle is None or seen is None or now - seen < settle):
+                waiting = True
+        if not waiting or now > deadline:
+            return None
+        time.sleep(0.1)
+
+
+def describe(started: Sequence[Script], known: Dict[str, int]) -> str:
+    """What each started executable did, for a failure message: 'a.py publishes /x; b.py exited (code 1)'."""
+    parts = []
+    for s in started:
+        regs = registrations_of(s, known)
+        if not s.node.running() and not regs:
+            parts.append("%s exited (code %s)%s" % (s.name, s.node.proc.returncode, last_words(s)))
+            continue
+        words = []
+        for kind in ("publishes", "subscribes", "services"):
+            names = sorted({n for r in regs for n in own_names(getattr(r, kind))})
+            if names:
+                words.append("%s %s" % ("offers" if kind == "services" else kind, ", ".join(names)))
+        parts.append("%s %s" % (s.name, " and ".join(words) if words else "registered nothing"))
+    return "; ".join(parts) or "(no executables)"
+
+
+def servers_first(paths: Sequence[str]) -> List[str]:
+    """`paths` with the likely service servers first (source mentions rospy.Service, name says
+    server): only the order of trying changes, and a client tried first only costs time."""
+    def key(path: str):
+        try:
+            with open(path, errors="replace") as f:
+                serves = "Service(" in f.read()
+        except OSError:
+            serves = False
+        return (not serves, "server" not in os.path.basename(path))
+    return sorted(paths, key=key)
+
+
+def last_words(started: Script) -> str:
+    """The end of a process's output, for a failure message (with a hint when rospy stopped it
+    because another node took its name)."""
+    try:
+        tail = started.node.output().strip()[-200:]
+    except OSError:
+        return ""
+    if not tail:
+        return ""
+    hint = ""
+    if SAME_NAME in tail:
+        hint = (" (another node took its name: give each node its own name, e.g. from its argument, "
+                "or rospy.init_node(..., anonymous=True))")
+    return ", its output ending with %r%s" % (tail, hint)
+
+
+class Registered(NamedTuple):
+    """The executable that registered what was asked, running on a pseudo-terminal, and its registration."""
+
+    path: str
+    keyboard: PtyKeyboard
+    registration: Registration
+
+
+def hinted_first(paths: Sequence[str], hint: str) -> List[str]:
+    """`paths` sorted by name, those whose name matches the regex `hint` first (only the order of trying)."""
+    pattern = re.compile(hint, re.IGNORECASE)
+    return sorted(paths, key=lambda p: (not pattern.search(os.path.basename(p)), os.path.basename(p)))
+
+
+def start_registering(pkg: str, args: Sequence[str], wanted: Callable[[Registration], bool], hint: str = "",
+                      log_name: str = "node", timeout: float = REGISTER_TIMEOUT,
+                      ) -> Tuple[Optional[Registered], List[str]]:
+    """Start each executable of `pkg` with `args`, on a pseudo-terminal, until one registers a node
+    that satisfies `wanted`; executables whose name matches `hint` go first. Returns it (still
+    running) and, for the failure message, what each other executable did."""
+    tried: List[str] = []
+    for path in hinted_first(list_executables(pkg), hint):
+        keyboard, found, seen = start_and_wait([path] + list(args), wanted, log_name, timeout)
+        if found is not None:
+            return Registered(path, keyboard, found), tried
+        keyboard.stop()
+        tried.append(describe_attempt(os.path.basename(path), keyboard, seen))
+    return None, tried
+
+
+def start_and_wait(command: Sequence[str], wanted: Callable[[Registration], bool], log_name: str,
+                   timeout: float = REGISTER_TIMEOUT, env: Optional[Dict[str, str]] = None,
+                   ) -> Tuple[PtyKeyboard, Optional[Registration], List[Registration]]:
+    """Start one node on a pseudo-terminal and wait until it registers what `wanted` asks; gives up
+    when it exits, after `timeout`, or once it has stayed registered for SETTLED seconds without
+    it. Returns the keyboard (still running), the registration (or None) and what it registered."""
+    before = node_uris()
+    keyboard = PtyKeyboard(command, log_path=artifact_path(log_name), env=env)
+    deadline = time.monotonic() + timeout
+    first_seen: Optional[float] = None
+    while True:
+        seen = new_registrations(before)
+        for reg in seen:
+            if wanted(reg):
+                return keyboard, reg, seen
+        now = time.monotonic()
+        if seen and first_seen is None:
+            first_seen = now
+        settled = first_seen is not None and now - first_seen > SETTLED
+        if now > deadline or settled or not keyboard.node.running():
+            return keyboard, None, seen
+        time.sleep(0.1)
+
+
+def describe_attempt(name: str, keyboard: PtyKeyboard, seen: Sequence[Registration]) -> str:
+    """What a started executable did instead of what was asked, for a failure message."""
+    if seen:
+        names = sorted({n for r in seen for n in own_names(r.publishes + r.subscribes + r.services)})
+        return "%s registered %s (%s)" % (name, ", ".join(r.node for r in seen), ", ".join(names) or "no topics")
+    if not keyboard.node.running():
+        return "%s exited with status %s" % (name, keyboard.node.proc.returncode)
+    return "%s registered no node" % name
+
+
+def not_found_message(pkg: str, what: str, tried: Sequence[str]) -> str:
+    """The failure when no executable of `pkg` registered `what` (with what each one did instead)."""
+    executables = list_executables(pkg)
+    if not executables:
+        return "package %s has no executable script (is it chmod +x, in scripts/ or nodes/?)" % pkg
+    return "no executable in package %s %s (found: %s; %s)" % (pkg, what, describe_names(executables),
+                                                                "; ".join(tried))
+
+
+def wait_for_publisher(topic: str, keyboard: PtyKeyboard, timeout: float = 30.0,
+                       before: Optional[Dict[str, str]] = None) -> Optional[Registration]:
+    """The first node (not in `before`, name -> URI) that publishes `topic`, while `keyboard`'s
+    process runs; None after `timeout`."""
+    before = before or {}
+    found = wait_for(lambda: [r for r in new_registrations(before) if topic in r.publishes]
+                     or not keyboard.node.running(), timeout)
+    return found[0] if isinstance(found, list) and found else None
+
+
+class Roslaunch(PtyKeyboard):
+    """`roslaunch PKG FILE ARGS...` on a pseudo-terminal, its output in the artifact `<log_name>.log`.
+    roslaunch runs against the master of the milestone's rostest (ROS_MASTER_URI is inherited);
+    stop() also ends the nodes it started in sessions of their own."""
+
+    def __init__(self, pkg: str, filename: str, log_name: str, args: Sequence[str] = ()) -> None:
+        super().__init__(["roslaunch", pkg, filename] + list(args), log_path=artifact_path(log_name))
+
+    def stop(self, timeout: float = ROSLAUNCH_STOP_S, grace: float = 1.5) -> Optional[int]:
+        return super().stop(timeout, grace)

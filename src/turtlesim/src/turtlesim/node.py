@@ -197,6 +197,9 @@ class TurtlesimNode:
         if t is None:
             return
         rospy.loginfo("Spawning turtle [%s] at x=[%f], y=[%f], theta=[%f]" % (name, t.x, t.y, t.theta))
+        with self.lock:
+            if name in self.interfaces:
+                return  # kept across a reset
         iface = TurtleInterface(name, self)
         with self.lock:
             if self.frame.has(name) and name not in self.interfaces:
@@ -236,7 +239,11 @@ class TurtlesimNode:
         background = self.background()
         with self.lock:
             removed, first = self.frame.reset(background)
-            dropped = [self.interfaces.pop(n) for n in removed if n in self.interfaces]
+            # The new turtle1 keeps the old one's topics and services. Re-advertising them makes
+            # every /turtle1/pose subscriber reconnect, and rospy can lose that race (the master's
+            # "no publisher" and "publisher back" updates may arrive in either order), leaving a
+            # node that called /reset deaf to the pose it needs next.
+            dropped = [self.interfaces.pop(n) for n in removed if n in self.interfaces and n != first]
         for iface in dropped:
             iface.shutdown()
         self._attach(first)

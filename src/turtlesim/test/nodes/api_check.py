@@ -174,6 +174,18 @@ class TurtlesimApi(unittest.TestCase):
         self.assertIsNotNone(p)
         self.assertTrue(self.rosout.wait_for_text("Resetting turtlesim."))
 
+    def test_reset_keeps_turtle1_pose_connection(self):
+        """A node that calls /reset keeps its /turtle1/pose connection: turtle1's publisher is not
+        re-advertised, so no subscriber has to win a reconnection race (arch drawer, 003 Task 7)."""
+        self.assertTrue(wait_for(lambda: self.pose.sub.get_num_connections() == 1, 10))
+        before = list(self.pose.sub.impl.connections)
+        for _ in range(5):
+            self.reset()
+        self.pose.clear()
+        self.assertIsNotNone(self.pose.wait(timeout=5), "no pose after the resets")
+        self.assertEqual(list(self.pose.sub.impl.connections), before, "the pose connection was replaced")
+        self.assertFalse(before[0].done, "the pose connection was closed")
+
 
 if __name__ == "__main__":
     rostest.rosrun("turtlesim", "turtlesim_api", TurtlesimApi)

@@ -18,7 +18,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 SAMPLES = sorted(p.parent for p in ROOT.glob("tests/submissions/*/expected.json"))
-JOBS = 2
+JOBS = 3  # the grader's default: 20 reference gradings at 3 gave 0 wrong verdicts (bench/grade_bench.py)
 GRADER_TIMEOUT_S = 3600
 MESSAGE_CHARS = 2500
 

@@ -2,18 +2,13 @@
 from __future__ import annotations
 
 import os
-import socket
 import tempfile
 import time
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Iterator, List
 
-
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
+from course_testkit.isolation import free_port
 
 
 def cpu_seconds(pid: int) -> float:

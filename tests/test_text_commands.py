@@ -6,7 +6,6 @@ Each row is a command a text tells students to type (001 2.1-2.2, 002 2-3, 003 P
 from __future__ import annotations
 
 import os
-import socket
 import subprocess
 from pathlib import Path
 
@@ -46,15 +45,10 @@ COMMANDS = [
 ]
 
 
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
 @pytest.fixture(scope="module")
 def ros_env(tmp_path_factory):
     """A roscore and a turtlesim_node of our own; both stopped (with their children) afterwards."""
+    from course_testkit.isolation import free_port
     from course_testkit.nodes import NodeProcess
     from course_testkit.waiting import wait_for
 

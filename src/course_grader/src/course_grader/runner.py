@@ -16,6 +16,7 @@ from concurrent.futures import ThreadPoolExecutor
 from typing import Callable, Dict, List, NamedTuple, Optional, Sequence
 
 from course_milestones.milestone import Milestone
+from course_milestones.scripts import script_problems
 from course_testkit import junit
 from course_testkit.artifacts import ENV_VAR as ARTIFACTS_VAR
 from course_testkit.rostest_runner import run_rostest
@@ -34,12 +35,6 @@ def longest_first(milestones: Sequence[Milestone], durations: Dict[str, float]) 
     """The milestones, those that took longest last time first (unknown ones before all), so the
     last runs to start are short ones and the runs at once end together."""
     return sorted(milestones, key=lambda m: -durations.get(m.name, float("inf")))
-
-
-def _already_said(hint: str, reason: str) -> bool:
-    """True when the check's reason already names this script as lacking chmod +x."""
-    script = hint.split(" ", 1)[0].split("/")[-1]
-    return "not executable" in hint and "chmod" in reason and script in reason
 
 
 def _load_json(path: str) -> Dict:
@@ -189,7 +184,7 @@ class Grader:
                                          "provides, which would replace them: %s (rename them)" % ", ".join(shadowed)))
                 return
             for m in longest_first(runnable, self._durations):
-                hints = [h for p in packages if p.name in m.packages for h in submissions.script_problems(p.path)]
+                hints = [h for p in packages if p.name in m.packages for h in script_problems(p.path)]
                 self._submit(self._run, sub, m, built.env, hints)
         except Exception:  # noqa: BLE001 - the grader's own failure is this submission's verdict
             self._fail_all(sub, selected or self.milestones[:1], "the grader failed on this submission:\n%s"
@@ -209,7 +204,7 @@ class Grader:
             reason = "" if result.passed else result.summary()
             if not result.passed:
                 hints = hints + verdict.output_capped(artifacts)
-                reason = "\n".join([reason] + [h for h in hints if not _already_said(h, reason)])
+                reason = "\n".join([reason] + [h for h in hints if h not in reason])
             verdict.trim_files(artifacts)
             verdict.trim_files(run_dir)
             self._record(Verdict(sub.name, m, result.passed, reason, verdict.log_tails(artifacts),

@@ -15,13 +15,13 @@ import zipfile
 import xml.etree.ElementTree as ET
 from typing import Dict, List, NamedTuple, Optional, Sequence
 
+from course_milestones.scripts import SKIPPED_DIRS
+
 ARCHIVE_SUFFIXES = (".tar.gz", ".tgz", ".zip")
 MAX_UNPACKED_BYTES = 200 * 1024 * 1024
 MAX_FILES = 20_000
-# Folders that are never a student's package sources (a whole catkin_ws may be handed in).
-SKIPPED_DIRS = {"build", "devel", "install", "logs", ".git", "__pycache__", ".catkin_tools", "__MACOSX"}
-# Files bigger than this are not read when looking for script problems.
-MAX_SCRIPT_BYTES = 1024 * 1024
+# Folders that are never a student's package sources (a whole catkin_ws may be handed in):
+# course_milestones.scripts.SKIPPED_DIRS, shared with the script checks.
 
 
 class UnsafeArchive(ValueError):
@@ -193,29 +193,3 @@ def find_packages(root: str) -> List[Package]:
     return found
 
 
-def script_problems(package_dir: str) -> List[str]:
-    """Scripts rosrun cannot start, in words: a #! line without the executable bit, or a #!
-    line ending in a carriage return (Windows line endings)."""
-    problems = []
-    for folder, dirs, files in os.walk(package_dir):
-        dirs[:] = sorted(d for d in dirs if d not in SKIPPED_DIRS and not d.startswith("."))
-        for name in sorted(files):
-            path = os.path.join(folder, name)
-            rel = os.path.relpath(path, os.path.dirname(package_dir))
-            try:
-                if not os.path.isfile(path) or os.path.getsize(path) > MAX_SCRIPT_BYTES:
-                    continue
-                with open(path, "rb") as f:
-                    first = f.readline(512)
-            except OSError:
-                continue
-            if not first.startswith(b"#!"):
-                continue
-            if not os.access(path, os.X_OK):
-                problems.append("%s starts with #! but is not executable, so rosrun cannot start it "
-                                "(chmod +x %s, and keep the bit in what you hand in)" % (rel, name))
-            if first.rstrip(b"\n").endswith(b"\r"):
-                problems.append("%s has Windows line endings: its #! line asks for '%s\\r', which does not "
-                                "exist (convert it to Unix line endings, e.g. dos2unix %s)"
-                                % (rel, (first[2:].decode(errors="replace").split() or ["?"])[-1], name))
-    return problems

@@ -100,21 +100,6 @@ def test_class_folder_entries(tmp_path):
     assert [s.name for s in submissions.class_submissions(str(tmp_path))] == ["alice", "bob"]
 
 
-def test_script_problems_name_missing_chmod_and_crlf(tmp_path):
-    pkg = tmp_path / "chatter"
-    (pkg / "scripts").mkdir(parents=True)
-    (pkg / "scripts/talker.py").write_text("#!/usr/bin/env python3\nprint(1)\n")
-    crlf = pkg / "scripts/listener.py"
-    crlf.write_bytes(b"#!/usr/bin/env python3\r\nprint(1)\r\n")
-    crlf.chmod(0o755)
-    helper = pkg / "scripts/helper.py"
-    helper.write_text("def f():\n    pass\n")
-    problems = submissions.script_problems(str(pkg))
-    assert len(problems) == 2
-    assert "chatter/scripts/listener.py has Windows line endings" in problems[0] and "python3\\r" in problems[0]
-    assert "chatter/scripts/talker.py starts with #! but is not executable" in problems[1]
-
-
 def test_a_folder_holding_only_an_archive_gets_it_unpacked(tmp_path):
     upload = tmp_path / "submission"
     upload.mkdir()

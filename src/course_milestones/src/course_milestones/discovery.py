@@ -17,6 +17,8 @@ import rosgraph
 import rospkg
 from catkin.find_in_workspaces import find_in_workspaces
 
+from course_milestones.scripts import script_problems
+
 # Our caller id towards the master, in every query the checks make.
 CALLER = "/course_milestone"
 # Files rosrun could run that are never a student's node.
@@ -57,32 +59,11 @@ def _is_executable(path: str) -> bool:
     return stat.S_ISREG(mode) and bool(mode & (stat.S_IXUSR | stat.S_IXGRP | stat.S_IXOTH))
 
 
-def not_executable(pkg: str) -> List[str]:
-    """Python scripts in the package that rosrun cannot run because they lack the executable bit
-    (the text's `chmod +x *.py` step)."""
-    found = []
-    for dirpath, dirnames, filenames in os.walk(package_dir(pkg)):
-        dirnames[:] = [d for d in dirnames if not d.startswith(".") and d not in ("test", "tests", "build")]
-        for name in filenames:
-            path = os.path.join(dirpath, name)
-            if name.endswith(".py") and name not in _IGNORED_NAMES and not os.access(path, os.X_OK) \
-                    and _has_main(path):
-                found.append(name)
-    return sorted(found)
-
-
-def _has_main(path: str) -> bool:
-    try:
-        with open(path, errors="replace") as f:
-            return "__main__" in f.read()
-    except OSError:
-        return False
-
-
 def chmod_hint(pkg: str) -> str:
-    """' (not executable: a.py, b.py: run chmod +x on them)' when there are such scripts, else ''."""
-    names = not_executable(pkg)
-    return " (not executable: %s: run chmod +x on them)" % ", ".join(names) if names else ""
+    """' (a.py starts with #! but is not executable ...)' when rosrun cannot start some of the
+    package's scripts (course_milestones.scripts says why), else ''."""
+    problems = script_problems(package_dir(pkg))
+    return " (%s)" % "; ".join(problems) if problems else ""
 
 
 def describe(names: Sequence[str]) -> str:

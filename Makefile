@@ -5,7 +5,7 @@ WS := $(ROOT)/catkin_ws
 # Every ROS command runs in the workspace environment, with the venv's python3 first.
 ROSENV := source $(WS)/devel/setup.bash &&
 
-.PHONY: deps build demo test unit rostest grade autograder bench bench-grade clean
+.PHONY: deps build demo test flake-hunt unit rostest grade autograder bench bench-grade clean
 
 deps:
 	@bash $(ROOT)/tools/deps.sh
@@ -20,6 +20,12 @@ demo: build
 
 test: build
 	@$(ROSENV) cd $(ROOT) && python3 -m pytest
+
+# make flake-hunt K=10: the whole suite K times in a row, failures per test (docs/testing.md).
+# UNTIL_FAIL=1 stops at the first failing run; ARGS="..." goes to pytest (a subset, -k ...).
+K ?= 10
+flake-hunt: build
+	@$(ROSENV) cd $(ROOT) && python3 tools/flake_hunt.py $(if $(UNTIL_FAIL),--until-fail) $(K) $(ARGS)
 
 # make grade: our reference solutions, every milestone. make grade SUBMISSIONS=DIR: every entry of
 # DIR (folder, .zip, .tar.gz) is one student's submission. Results in $(GRADES) (default ./grades).

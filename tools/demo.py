@@ -5,48 +5,46 @@ Three turtles draw with different pens (a red circle, a green spiral, a yellow
 zig-zag); the canvas is saved as a PNG whose path is printed with a one-line
 summary; everything started here is shut down before exit. Headless unless a
 display is present, in which case the turtlesim window shows the scene.
+
+Every socket the demo listens on is bound to loopback (tests/test_demo_loopback.py checks
+it with `ss`). rospy nodes and rosmaster bind to 127.0.0.1 when ROS_HOSTNAME=localhost, but
+Debian's rosout, a roscpp node, always binds its XML-RPC server to 0.0.0.0 (xmlrpcpp binds
+INADDR_ANY, whatever ROS_HOSTNAME or ROS_IP say). So the demo starts `rosmaster --core`
+itself instead of `roscore` (= master + rosout): nodes still publish /rosout, nobody
+aggregates it into /rosout_agg. The master's port is the kernel's pick, not 11311, so no
+client left with the default ROS_MASTER_URI on this machine can reach into the demo.
 """
 from __future__ import annotations
 
-import math
+import argparse
 import os
 import shutil
-import socket
 import sys
 import tempfile
 import time
 from pathlib import Path
+from typing import Sequence
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENE_SECONDS = 8.0
+STARTUP_TIMEOUT_S = 30.0
 
 
-def free_port(preferred: int = 11311) -> int:
-    for port in (preferred, 0):
-        with socket.socket() as s:
-            try:
-                s.bind(("127.0.0.1", port))
-                return s.getsockname()[1]
-            except OSError:
-                continue
-    raise RuntimeError("no free port")
-
-
-def wait_for_master(deadline: float) -> None:
+def master_online() -> bool:
     import rosgraph
-    while not rosgraph.Master("/demo").is_online():
-        if time.monotonic() > deadline:
-            raise RuntimeError("the master did not come up")
-        time.sleep(0.1)
+    return rosgraph.Master("/demo").is_online()
 
 
-def scene(out_dir: Path) -> str:
+def scene(out_dir: Path, seconds: float = SCENE_SECONDS) -> str:
+    """Spawn two turtles, give each a pen and a motion for `seconds`, save the canvas."""
     import rospy
     from geometry_msgs.msg import Twist
     from std_srvs.srv import Trigger
 
     from turtlesim.msg import Pose
     from turtlesim.srv import SetPen, Spawn, TeleportAbsolute
+
+    from course_testkit.waiting import wait_for
 
     rospy.init_node("demo_scene")
     rospy.wait_for_service("/spawn", 30)
@@ -66,13 +64,11 @@ def scene(out_dir: Path) -> str:
     pubs = {n: rospy.Publisher("/%s/cmd_vel" % n, Twist, queue_size=1) for n in pens}
     poses = []
     rospy.Subscriber("/turtle1/pose", Pose, lambda _m: poses.append(time.monotonic()))
-    deadline = time.monotonic() + 10
-    while any(p.get_num_connections() == 0 for p in pubs.values()) and time.monotonic() < deadline:
-        time.sleep(0.01)
+    wait_for(lambda: all(p.get_num_connections() for p in pubs.values()), timeout=10)
 
     rate = rospy.Rate(20)
     started = time.monotonic()
-    while not rospy.is_shutdown() and (t := time.monotonic() - started) < SCENE_SECONDS:
+    while not rospy.is_shutdown() and (t := time.monotonic() - started) < seconds:
         commands = {
             "turtle1": (2.0, 1.2),                                  # a circle
             "raphael": (0.4 + 0.35 * t, 2.5),                       # an opening spiral
@@ -90,28 +86,40 @@ def scene(out_dir: Path) -> str:
         raise RuntimeError(answer.message)
     target = out_dir / "turtlesim-demo.png"
     shutil.copyfile(answer.message, target)
-    return "demo: 3 turtles drew for %.0f s; turtle1 pose rate %.1f Hz; canvas saved to %s" % (
-        SCENE_SECONDS, pose_rate, target)
+    return "demo: 3 turtles drew for %g s; turtle1 pose rate %.1f Hz; canvas saved to %s" % (
+        seconds, pose_rate, target)
 
 
-def main() -> int:
-    out_dir = ROOT / "output"
-    out_dir.mkdir(exist_ok=True)
+def parse_args(argv: Sequence[str]) -> argparse.Namespace:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--seconds", type=float, default=SCENE_SECONDS, help="how long the turtles draw")
+    parser.add_argument("--out", type=Path, default=ROOT / "output", help="where the canvas PNG goes")
+    return parser.parse_args(argv)
+
+
+def main(argv: Sequence[str]) -> int:
+    args = parse_args(argv)
+    args.out.mkdir(parents=True, exist_ok=True)
+    from course_testkit.isolation import free_port
+    from course_testkit.nodes import NodeProcess  # each in its own process group, stopped with it
+    from course_testkit.waiting import wait_for
+
     port = free_port()
     scratch = Path(tempfile.mkdtemp(prefix="turtle-demo-"))
     os.environ.update(ROS_MASTER_URI="http://localhost:%d" % port, ROS_HOSTNAME="localhost",
                       ROS_HOME=str(scratch), ROS_LOG_DIR=str(scratch / "log"))
     os.environ.pop("ROS_IP", None)
-    from course_testkit.nodes import NodeProcess  # each in its own process group, stopped with it
-
+    print("demo: private master at %s (loopback only)" % os.environ["ROS_MASTER_URI"], flush=True)
     procs = []
     try:
-        procs.append(NodeProcess(["roscore", "-p", str(port)], log_path=str(scratch / "roscore.log")))
-        wait_for_master(time.monotonic() + 30)
+        procs.append(NodeProcess(["rosmaster", "--core", "-p", str(port), "__log:=%s" % (scratch / "master.log")],
+                                 log_path=str(scratch / "rosmaster.out")))
+        if not wait_for(master_online, timeout=STARTUP_TIMEOUT_S, interval=0.1):
+            raise RuntimeError("the master did not come up")
         procs.append(NodeProcess(["rosrun", "turtlesim", "turtlesim_node",
                                   "_snapshot_dir:=%s" % (scratch / "snapshots")],
                                  log_path=str(scratch / "turtlesim.log")))
-        summary = scene(out_dir)
+        summary = scene(args.out, args.seconds)
     except Exception as err:  # report, then still clean up
         print("demo failed: %s (logs in %s)" % (err, scratch), file=sys.stderr)
         return 1
@@ -124,4 +132,4 @@ def main() -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(main(sys.argv[1:]))

@@ -5,6 +5,7 @@ import rospy
 from geometry_msgs.msg import Pose as PoseMsg, Twist as TwistMsg
 
 from .frames import Pose, Twist
+from .limits import pose_problem, twist_problem
 
 
 def stamp_from_sim(seconds: float) -> rospy.Time:
@@ -41,7 +42,12 @@ def twist_to_msg(twist: Twist) -> TwistMsg:
     return msg
 
 
-def pose_msg_is_finite(msg: PoseMsg) -> bool:
-    import math
+def pose_msg_problem(msg: PoseMsg) -> str:
+    """'' when the physics can hold this pose message, else why not (see limits.py)."""
     p, q = msg.position, msg.orientation
-    return all(math.isfinite(v) for v in (p.x, p.y, p.z, q.x, q.y, q.z, q.w))
+    return pose_problem((p.x, p.y, p.z), (q.x, q.y, q.z, q.w))
+
+
+def twist_msg_problem(msg: TwistMsg) -> str:
+    """'' when the physics can hold this twist message, else why not (see limits.py)."""
+    return twist_problem((msg.linear.x, msg.linear.y, msg.linear.z), (msg.angular.x, msg.angular.y, msg.angular.z))

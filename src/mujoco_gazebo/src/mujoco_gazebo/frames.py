@@ -14,10 +14,11 @@ IDENTITY_QUAT = np.array([1.0, 0.0, 0.0, 0.0])
 def normalize_quat(q: np.ndarray) -> np.ndarray:
     """Unit quaternion (w, x, y, z); a zero quaternion means 'no rotation', as Gazebo treats it."""
     q = np.asarray(q, dtype=float)
-    n = float(np.linalg.norm(q))
-    if n < 1e-12:
+    scale = float(np.max(np.abs(q)))  # scaled first: squaring 1e200 would overflow to inf
+    if not scale > 0.0 or not math.isfinite(scale) or scale * float(np.linalg.norm(q / scale)) < 1e-12:
         return IDENTITY_QUAT.copy()
-    return q / n
+    q = q / scale
+    return q / float(np.linalg.norm(q))
 
 
 def quat_mul(a: np.ndarray, b: np.ndarray) -> np.ndarray:

@@ -8,6 +8,7 @@ import threading
 import time
 from typing import Dict, List
 
+import mujoco
 import rospy
 from gazebo_msgs.msg import LinkStates, ModelState, ModelStates
 from gazebo_msgs.srv import (DeleteModel, DeleteModelResponse, GetLinkState, GetLinkStateResponse, GetModelState,
@@ -17,8 +18,8 @@ from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Empty, EmptyResponse
 
 from . import database
-from .conversions import (pose_from_msg, pose_msg_is_finite, pose_to_msg, stamp_from_sim, twist_from_msg,
-                          twist_to_msg)
+from .conversions import (pose_from_msg, pose_msg_problem, pose_to_msg, stamp_from_sim, twist_from_msg,
+                          twist_msg_problem, twist_to_msg)
 from .frames import Pose
 from .pacing import Pacer
 from .ros_plugins import RobotPlugin, make_plugins
@@ -29,6 +30,8 @@ from .world import World, WorldError
 class GazeboServer:
     def __init__(self, world_file: str = "", real_time_factor: float = 1.0, paused: bool = False,
                  states_rate: float = 100.0, steps_per_update: int = 5, gui: bool = False) -> None:
+        # MuJoCo's warnings go to the node's log (not stdout and ./MUJOCO_LOG.TXT)
+        mujoco.set_mju_user_warning(lambda text: rospy.logwarn_throttle(5.0, "MuJoCo: %s" % text.strip()))
         step, gravity = 0.001, (0.0, 0.0, -9.81)
         world_desc = None
         if world_file:
@@ -88,8 +91,9 @@ class GazeboServer:
 
     # ---- services ---------------------------------------------------------------------
     def _spawn(self, req) -> SpawnModelResponse:
-        if not pose_msg_is_finite(req.initial_pose):
-            return SpawnModelResponse(False, "SpawnModel: initial_pose of [%s] is not finite" % req.model_name)
+        problem = pose_msg_problem(req.initial_pose)
+        if problem:
+            return SpawnModelResponse(False, "SpawnModel: Failure - initial_pose of [%s]: %s" % (req.model_name, problem))
         with self.lock:
             try:
                 ref_pose, _ = self.world.frame_state(req.reference_frame)
@@ -155,8 +159,9 @@ class GazeboServer:
 
     def _apply_model_state(self, state: ModelState) -> str:
         """'' on success, else the reason."""
-        if not pose_msg_is_finite(state.pose):
-            return "pose for [%s] is not finite" % state.model_name
+        problem = pose_msg_problem(state.pose) or twist_msg_problem(state.twist)
+        if problem:
+            return "refused state of [%s]: %s" % (state.model_name, problem)
         with self.lock:
             try:
                 self.world.set_model_state(state.model_name, pose_from_msg(state.pose), twist_from_msg(state.twist),
@@ -227,7 +232,10 @@ class GazeboServer:
             with self.lock:
                 paused = self.world.paused
                 if not paused:
+                    divergences = self.world.divergences
                     self.world.step(self.steps_per_update)
+                    if self.world.divergences != divergences:
+                        rospy.logwarn_throttle(1.0, "t=%.3f s: %s" % (self.world.time, self.world.last_divergence))
                 now = self.world.time
                 if self._rebase:
                     pacer.rebase(time.monotonic(), now)

@@ -122,11 +122,6 @@ def load_xml(args: SpawnArgs, get_param=None, stdin=None) -> str:
 
 def main(argv: Optional[List[str]] = None) -> int:
     import rospy
-    from gazebo_msgs.srv import SpawnModel
-    from geometry_msgs.msg import Pose as PoseMsg
-    from std_srvs.srv import Empty
-
-    from .frames import quat_from_rpy
 
     argv = rospy.myargv(sys.argv if argv is None else argv)[1:]
     rospy.init_node("spawn_model", anonymous=True)
@@ -138,13 +133,34 @@ def main(argv: Optional[List[str]] = None) -> int:
         return 2
     if args.joints:
         rospy.logwarn("spawn_model: -J initial joint positions are ignored by this simulator")
+    try:
+        return _spawn(args, xml)
+    except rospy.ROSInterruptException:  # Ctrl-C while waiting
+        return 1
+    except (rospy.ServiceException, rospy.ROSException, OSError) as exc:
+        # gazebo died mid-call (transport error), or the master went away: gazebo_ros's message, no traceback
+        rospy.logerr("Service call failed: %s" % exc)
+        rospy.logfatal("spawn_model: gazebo is not running (or died during the call); model %s not spawned"
+                       % args.model)
+        return 1
+
+
+def _spawn(args: SpawnArgs, xml: str) -> int:
+    """Wait for gazebo's spawn service, call it, unpause if asked: 0 when the model is in."""
+    import rospy
+    from gazebo_msgs.srv import SpawnModel
+    from geometry_msgs.msg import Pose as PoseMsg
+    from std_srvs.srv import Empty
+
+    from .frames import quat_from_rpy
+
     ns = args.gazebo_namespace.rstrip("/")
     service = "%s/spawn_%s_model" % (ns, args.fmt)
     rospy.loginfo("Waiting for service %s" % service)
     try:
         rospy.wait_for_service(service, timeout=args.timeout)
     except rospy.ROSException:
-        rospy.logfatal("spawn_model: %s did not appear within %.0f s" % (service, args.timeout))
+        rospy.logfatal("spawn_model: %s did not appear within %.0f s: gazebo is not running" % (service, args.timeout))
         return 1
     pose = PoseMsg()
     pose.position.x, pose.position.y, pose.position.z = args.pose[:3]

@@ -3,15 +3,29 @@
 The input is subscribed as rospy.AnyMsg (raw bytes, never deserialised). The output
 publisher is created on the first message, with a message class carrying the type,
 md5sum and definition read from the publisher's connection header, so subscribers of
-the real type accept it. ~lazy (like topic_tools): once the output exists, the input
-is only subscribed while the output has subscribers.
+the real type accept it. As topic_tools relay does:
+- the output is latched when the first message came from a latched publisher (its
+  "latching" header), so a one-shot `rostopic pub -1` still reaches later subscribers;
+- the relay keeps the first type it saw: a message of another type (a second publisher of
+  another type on IN) is dropped, with a throttled warning naming both types, never sent
+  out as bytes that the output's subscribers would misread;
+- ~lazy: once the output exists, the input is only subscribed while the output has
+  subscribers.
 """
 from __future__ import annotations
 
 import threading
+import time
 from typing import Dict, Optional, Type
 
 import rospy
+
+from course_relay.type_lock import TypeLock, describe, message_type
+
+#: Messages the output may hold per subscriber before rospy drops the oldest (topic_tools: 10).
+OUT_QUEUE_SIZE = 10
+#: Seconds between two warnings about messages of the same other type.
+TYPE_WARNING_PERIOD_S = 5.0
 
 
 def relay_class(connection_header: Dict[str, str]) -> Type[rospy.AnyMsg]:
@@ -24,6 +38,11 @@ def relay_class(connection_header: Dict[str, str]) -> Type[rospy.AnyMsg]:
         "_has_header": False,
         "__slots__": [],
     })
+
+
+def is_latched(connection_header: Dict[str, str]) -> bool:
+    """Whether the publisher of a message latches it (rospy and roscpp send latching=1)."""
+    return connection_header.get("latching") == "1"
 
 
 class _LazyListener(rospy.SubscribeListener):
@@ -40,14 +59,17 @@ class _LazyListener(rospy.SubscribeListener):
 
 
 class TopicRelay:
-    """IN -> OUT for any message type; optionally lazy."""
+    """IN -> OUT for any message type (the first one seen); optionally lazy."""
 
     def __init__(self, in_topic: str, out_topic: str, lazy: bool = False) -> None:
-        self.in_topic, self.out_topic, self.lazy = in_topic, out_topic, lazy
+        """Names as given on the command line (already checked); resolved here like rospy would."""
+        self.in_topic, self.out_topic = rospy.resolve_name(in_topic), rospy.resolve_name(out_topic)
+        self.lazy = lazy
         self._lock = threading.Lock()
         self._sub: Optional[rospy.Subscriber] = None
         self._pub: Optional[rospy.Publisher] = None
         self._out_class: Optional[Type[rospy.AnyMsg]] = None
+        self._types = TypeLock(TYPE_WARNING_PERIOD_S)
         self.subscribe_input()
 
     def subscribe_input(self) -> None:
@@ -63,9 +85,17 @@ class TopicRelay:
                 self._sub = None
 
     def _forward(self, msg: rospy.AnyMsg) -> None:
+        header = msg._connection_header
         pub = self._pub
         if pub is None:
-            pub = self._advertise(msg._connection_header)
+            pub = self._advertise(header)
+        if not self._types.admits(header):
+            if self._types.warning_due(header, time.monotonic()):
+                rospy.logwarn("relay %s -> %s: dropping %s messages from %s: the relay forwards %s, the first "
+                              "type it saw on %s" % (self.in_topic, self.out_topic, describe(message_type(header)),
+                                                     header.get("callerid"), describe(self._types.locked),
+                                                     self.in_topic))
+            return
         out = self._out_class()
         out._buff = msg._buff
         try:
@@ -78,9 +108,10 @@ class TopicRelay:
     def _advertise(self, header: Dict[str, str]) -> rospy.Publisher:
         with self._lock:
             if self._pub is None:
+                self._types.admits(header)  # lock onto the type we advertise, before any other thread can
                 self._out_class = relay_class(header)
                 listener = _LazyListener(self) if self.lazy else None
-                # queue_size=None: publish synchronously from the subscriber thread (lowest latency)
-                self._pub = rospy.Publisher(self.out_topic, self._out_class, queue_size=None,
-                                            subscriber_listener=listener, tcp_nodelay=True)
+                self._pub = rospy.Publisher(self.out_topic, self._out_class, queue_size=OUT_QUEUE_SIZE,
+                                            latch=is_latched(header), subscriber_listener=listener,
+                                            tcp_nodelay=True)
             return self._pub

@@ -33,6 +33,8 @@ _QPOS_SIZE = {int(mujoco.mjtJoint.mjJNT_FREE): 7, int(mujoco.mjtJoint.mjJNT_BALL
 #: deletions as there are live models (amortised: O(1) parses per delete, memory O(live)).
 MIN_DELETIONS_BEFORE_REBUILD = 32
 _UNSTABLE = (mujoco.mjtWarning.mjWARN_BADQPOS, mujoco.mjtWarning.mjWARN_BADQVEL, mujoco.mjtWarning.mjWARN_BADQACC)
+_UNSTABLE_SLICE = slice(min(map(int, _UNSTABLE)), max(map(int, _UNSTABLE)) + 1)
+assert _UNSTABLE_SLICE.stop - _UNSTABLE_SLICE.start == len(_UNSTABLE)  # contiguous in mjtWarning
 _QVEL_SIZE = {int(mujoco.mjtJoint.mjJNT_FREE): 6, int(mujoco.mjtJoint.mjJNT_BALL): 3,
               int(mujoco.mjtJoint.mjJNT_SLIDE): 1, int(mujoco.mjtJoint.mjJNT_HINGE): 1}
 
@@ -113,24 +115,22 @@ class World:
         return float(self.model.opt.timestep)
 
     def step(self, n: int = 1) -> None:
-        """n physics steps. If they diverge (MuJoCo's instability warning, a non-finite state or
-        a MuJoCo error), the last good state comes back and the time still advances by n steps:
-        the clock never runs backwards and no model jumps to its spawn pose."""
+        """n physics steps. If they diverge (MuJoCo's instability check: NaN, inf or above 1e10
+        in qpos, qvel or qacc; or a MuJoCo error), the last good state comes back and the time
+        still advances by n steps: the clock never runs backwards and no model jumps to its
+        spawn pose (MuJoCo's own reset would do both)."""
         start = self.data.time
-        for warning in _UNSTABLE:
-            self.data.warning[warning].number = 0
+        counts = self.data.warning.number  # a view: written through
+        counts[_UNSTABLE_SLICE] = 0
         try:
             mujoco.mj_step(self.model, self.data, nstep=n)
-            diverged = self._unstable_warning()
+            diverged = self._unstable_warning() if counts[_UNSTABLE_SLICE].any() else ""
         except mujoco.FatalError as exc:
             diverged = "MuJoCo error: %s" % exc
         # mj_step leaves body poses/velocities as they were *before* its last integration
         self._kinematics_stale = True
-        if not diverged and not (all_finite(self.data.qpos, self.data.qvel, self.data.act)
-                                 and self.data.time >= start):
-            diverged = "non-finite state"
-        if diverged:
-            self._restore_good_state(start + n * self.model.opt.timestep, diverged)
+        if diverged or self.data.time < start:
+            self._restore_good_state(start + n * self.model.opt.timestep, diverged or "the time went back")
         else:
             self._diverged_in_a_row = 0
             self._save_good_state()

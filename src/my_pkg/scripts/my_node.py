@@ -6,7 +6,8 @@ publishes /turtle1/cmd_vel; services /pause_drawing and /resume_drawing
 (std_srvs/Trigger); calls /reset before each arch. Unlike the text's skeleton the
 drawing is driven by pose messages, not a loop inside a callback, so pause/resume
 and new requests are handled while drawing. A request while busy is ignored; a bad
-angle is logged as an error and the node keeps serving.
+angle (NaN, inf, outside [0, 2pi]) is always logged as an error, busy or not, and the
+node keeps serving.
 """
 import threading
 
@@ -40,14 +41,14 @@ class Draw:
         rospy.Subscriber("draw_arch", Float32, self.draw_arch_callback, queue_size=10)
 
     def draw_arch_callback(self, msg: Float32) -> None:
+        try:  # a bad angle gets its error even while drawing
+            progress = ArchProgress(msg.data, self.threshold)
+        except ArchError as err:
+            rospy.logerr(str(err))
+            return
         with self.lock:
             if self.is_busy:
                 rospy.loginfo("Currently drawing, new request is ignored")
-                return
-            try:
-                progress = ArchProgress(msg.data, self.threshold)
-            except ArchError as err:
-                rospy.logerr(str(err))
                 return
             rospy.loginfo("Recieved draw request")
             self.is_busy = True

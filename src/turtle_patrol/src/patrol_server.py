@@ -6,19 +6,40 @@ A call `rosservice call /turtle2/patrol vel omega x y theta` teleports that turt
 the next call for it. One server serves every turtle: the ones named as arguments, and
 (~discover, default true) every turtle it finds on the master (a .../pose topic of type
 turtlesim/Pose), checked every second, so turtles spawned later get a service too.
-Bad requests (NaN/inf, a pose off the canvas) fail with a message; the server keeps running.
+Bad requests (NaN/inf, a pose off the canvas, a speed no tick can draw) fail with a
+message; the server keeps running and never sends turtlesim such numbers.
 """
 import math
 import sys
 import threading
+from typing import Optional
 
 import rospy
 from geometry_msgs.msg import Twist
+from turtlesim.constants import TICK, WORLD_SIZE
 from turtlesim.srv import TeleportAbsolute
 
 from turtle_patrol.srv import Patrol, PatrolResponse
 
-WORLD_SIZE = 499.0 / 45.0  # turtlesim's canvas in metres
+MAX_VEL = WORLD_SIZE / TICK
+"""m/s: faster, one turtlesim tick would cross the whole canvas (693 m/s)."""
+MAX_OMEGA = math.pi / TICK
+"""rad/s: faster, one tick would turn more than half a turn and no circle is drawn (196 rad/s)."""
+
+
+def request_error(vel: float, omega: float, x: float, y: float, theta: float) -> Optional[str]:
+    """Why a patrol request cannot be served, or None when it can."""
+    values = (vel, omega, x, y, theta)
+    if not all(math.isfinite(v) for v in values):
+        return "patrol values must be finite numbers, got %s" % (values,)
+    if abs(vel) > MAX_VEL:
+        return "vel=%g is too fast: |vel| must be <= %.1f m/s (one tick would cross the canvas)" % (vel, MAX_VEL)
+    if abs(omega) > MAX_OMEGA:
+        return ("omega=%g is too fast: |omega| must be <= %.1f rad/s (one tick would turn more than "
+                "half a turn)" % (omega, MAX_OMEGA))
+    if not (0.0 <= x <= WORLD_SIZE and 0.0 <= y <= WORLD_SIZE):
+        return "x and y must be inside the canvas [0, %.2f]" % WORLD_SIZE
+    return None
 
 
 class TurtlePatrol:
@@ -32,11 +53,9 @@ class TurtlePatrol:
         self.service = rospy.Service("/%s/patrol" % name, Patrol, self.handle)
 
     def handle(self, req):
-        values = (req.vel, req.omega, req.x, req.y, req.theta)
-        if not all(math.isfinite(v) for v in values):
-            raise rospy.ServiceException("patrol values must be finite numbers, got %s" % (values,))
-        if not (0.0 <= req.x <= WORLD_SIZE and 0.0 <= req.y <= WORLD_SIZE):
-            raise rospy.ServiceException("x and y must be inside the canvas [0, %.2f]" % WORLD_SIZE)
+        problem = request_error(req.vel, req.omega, req.x, req.y, req.theta)
+        if problem:
+            raise rospy.ServiceException(problem)
         self.cmd = None  # stop the old patrol while teleporting
         self.pub.publish(Twist())
         try:

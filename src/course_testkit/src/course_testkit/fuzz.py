@@ -7,7 +7,9 @@ the add/progress servers) draws its inputs from here, so "huge", "NaN" and
 from __future__ import annotations
 
 import math
+import struct
 
+from hypothesis import HealthCheck, Phase, settings
 from hypothesis import strategies as st
 
 FLOAT32_MAX = 3.4028234663852886e38
@@ -31,6 +33,19 @@ def wild_floats() -> st.SearchStrategy[float]:
     """Finite, huge, NaN and +-inf: whatever a float64 field of a message can carry."""
     return st.one_of(finite_floats(), st.sampled_from([math.inf, -math.inf, math.nan]),
                      st.floats(allow_nan=True, allow_infinity=True))
+
+
+def as_float32(value: float) -> float:
+    """What a float64 becomes in a float32 message field, held within float32's range (a finite
+    value beyond it cannot even be sent: genpy raises OverflowError); inf and NaN pass as they are."""
+    if math.isfinite(value):
+        value = min(max(value, -FLOAT32_MAX), FLOAT32_MAX)
+    return struct.unpack("<f", struct.pack("<f", value))[0]
+
+
+def wild_float32s() -> st.SearchStrategy[float]:
+    """wild_floats() as a float32 field carries them: finite (float32's ends drawn often), NaN, +-inf."""
+    return wild_floats().map(as_float32)
 
 
 def wild_ints(bits: int = 32) -> st.SearchStrategy[int]:
@@ -71,6 +86,14 @@ def wild_xml() -> st.SearchStrategy[str]:
                               "</collision></link></robot>" % (v, v)),
         st.text(max_size=200))
     return snippets
+
+
+def live_node_settings(max_examples: int) -> settings:
+    """Hypothesis settings for fuzzing a running node from a rostest: reproducible, nothing
+    stored, no deadline, no shrinking (each example costs real time on a live node; the first
+    failing one is reported as it is, within the .test's time limit)."""
+    return settings(max_examples=max_examples, deadline=None, derandomize=True, database=None,
+                    phases=[Phase.explicit, Phase.generate], suppress_health_check=list(HealthCheck))
 
 
 def is_wrapped_angle(theta: float) -> bool:

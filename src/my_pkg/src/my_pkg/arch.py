@@ -35,7 +35,12 @@ class ArchProgress:
         self._last: Optional[float] = None
 
     def update(self, theta: float) -> bool:
-        """Feed a heading; True once the turtle has turned to within the threshold of the target."""
+        """Feed a heading; True once the turtle has turned to within the threshold of the target.
+
+        A non-finite heading is skipped: one bad pose must not poison the sum for good.
+        """
+        if not math.isfinite(theta):
+            return self.done
         if self._last is not None:
             self.turned += wrap(theta - self._last)
         self._last = theta

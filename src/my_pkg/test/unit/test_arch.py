@@ -39,3 +39,11 @@ def test_full_circle_is_not_zero():
 
 def test_zero_arch_is_done_at_once():
     assert ArchProgress(0.0).update(0.3)
+
+
+def test_a_non_finite_heading_does_not_poison_the_progress():
+    p = ArchProgress(1.0, 0.02)
+    p.update(0.0)
+    assert not p.update(float("nan"))
+    assert not p.update(float("inf"))
+    assert p.update(1.0)  # was never done: the sum had become NaN

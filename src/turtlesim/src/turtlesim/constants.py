@@ -26,6 +26,14 @@ BACKGROUND_PARAMS = ("background_r", "background_g", "background_b")
 
 TWO_PI = 2.0 * math.pi
 
+FLOAT32_MAX = 3.4028234663852886e38
+"""The largest float32: turtlesim/Pose carries float32, so no reported speed may exceed it."""
+
+MAX_REACH = 1.0e6
+"""How far (metres) from the canvas a teleport may carry a turtle within one tick; a farther
+target is pulled back along the same line (the drawn path keeps its direction) before the
+wall clamp. It keeps every coordinate finite whatever finite numbers a teleport carries."""
+
 WALL_WARNING = "Oh no! I hit the wall! (Clamping from [x=%f, y=%f])"
 
 TELEOP_SCALE_LINEAR = 2.0

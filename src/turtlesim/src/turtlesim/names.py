@@ -4,7 +4,7 @@ from __future__ import annotations
 import re
 from typing import Optional
 
-_NAME = re.compile(r"^/?[A-Za-z][A-Za-z0-9_]*(/[A-Za-z][A-Za-z0-9_]*)*$")
+_NAME = re.compile(r"/?[A-Za-z][A-Za-z0-9_]*(/[A-Za-z][A-Za-z0-9_]*)*")
 
 
 def name_error(name: str) -> Optional[str]:
@@ -13,7 +13,7 @@ def name_error(name: str) -> Optional[str]:
     A turtle's name becomes the namespace of its topics and services, so it must
     be a legal ROS graph name (no private `~` names, no empty parts).
     """
-    if not _NAME.match(name):
+    if not _NAME.fullmatch(name):  # not match(): `$` would let a trailing newline through
         return ("invalid turtle name [%s]: a name starts with a letter and holds only "
                 "letters, digits, '_' and '/'" % name)
     return None

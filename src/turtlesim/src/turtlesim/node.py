@@ -40,7 +40,7 @@ def background_from(params: dict) -> RGB:
         value = params.get(param, default)
         try:
             values.append(min(max(int(value), 0), 255))
-        except (TypeError, ValueError):
+        except (TypeError, ValueError, OverflowError):  # OverflowError: int(inf)
             rospy.logwarn("~%s=%r is not a number; using %d" % (param, value, default))
             values.append(default)
     return tuple(values)
@@ -69,6 +69,8 @@ class TurtleInterface:
             self.colour_pub.publish(Color(*update.colour))
         except rospy.ROSException:
             pass  # killed between the tick and the publish
+        except Exception as err:  # noqa: BLE001  (e.g. a value genpy cannot pack: never stop the tick)
+            rospy.logerr_throttle(1.0, "%s: could not publish the pose: %r" % (self.name, err))
 
     def shutdown(self) -> None:
         self.pose_pub.unregister()
@@ -80,9 +82,13 @@ class TurtleInterface:
     def _on_cmd_vel(self, msg: Twist) -> None:
         now = time.monotonic()
         try:
-            self._sim.with_turtle(self.name, lambda t: t.command(msg.linear.x, msg.linear.y, msg.angular.z, now))
-        except (ValueError, TurtleError) as err:
+            clamped = self._sim.with_turtle(self.name, lambda t: t.command(msg.linear.x, msg.linear.y,
+                                                                           msg.angular.z, now))
+        except (ValueError, TurtleError) as err:  # non-finite: dropped
             rospy.logwarn_throttle(1.0, "%s: %s" % (self.name, err))
+            return
+        if clamped:
+            rospy.logwarn_throttle(1.0, "%s: %s" % (self.name, clamped))
 
     def _on_set_pen(self, req):
         self._sim.call(self.name, lambda t: t.set_pen(req.r, req.g, req.b, req.width, req.off))
@@ -107,7 +113,7 @@ class TurtlesimNode:
             if param not in params:
                 rospy.set_param("~" + param, value)
                 params[param] = value
-        self.frame = TurtleFrame(Canvas(background_from(params)))
+        self.frame = TurtleFrame(Canvas(background_from(params)), canonical=rospy.resolve_name)
         self.interfaces: Dict[str, TurtleInterface] = {}
         self.image_pub = rospy.Publisher("~image", Image, queue_size=1)
         self.image_period = 1.0 / max(float(params.get("image_rate", 10.0)), 0.1)
@@ -122,7 +128,7 @@ class TurtlesimNode:
             rospy.Service("~snapshot", Trigger, self._on_snapshot),
         ]
         self._add_turtle("", CENTRE, CENTRE, 0.0)
-        self.ticker = Ticker(TICK, self.tick, name="turtlesim-tick")
+        self.ticker = Ticker(TICK, self.tick, name="turtlesim-tick", on_error=self._on_tick_error)
         self.image_thread = threading.Thread(target=self._stream_images, name="turtlesim-image", daemon=True)
 
     def start(self) -> None:
@@ -133,12 +139,13 @@ class TurtlesimNode:
         self.ticker.stop()
 
     # -- helpers used by the turtle interfaces ------------------------------------------
-    def with_turtle(self, name: str, action) -> None:
+    def with_turtle(self, name: str, action):
+        """action(turtle) under the lock, and what it returns."""
         with self.lock:
             turtle = self.frame.turtles.get(name)
             if turtle is None:
                 raise TurtleError("turtle [%s] does not exist" % name)
-            action(turtle)
+            return action(turtle)
 
     def call(self, name: str, action) -> None:
         """Run a service action on a turtle; refusals become failed calls with the reason."""
@@ -159,10 +166,16 @@ class TurtlesimNode:
             updates = self.frame.update(TICK, time.monotonic())
             targets = [(self.interfaces.get(u.name), u) for u in updates]
         for iface, update in targets:
+            if update.error is not None:
+                rospy.logerr_throttle(1.0, "turtle [%s] stopped: its update failed: %r" % (update.name, update.error))
             if update.result.clamped_from is not None:
                 rospy.logwarn(WALL_WARNING % update.result.clamped_from)
             if iface is not None:
                 iface.publish(update)
+
+    @staticmethod
+    def _on_tick_error(err: Exception) -> None:
+        rospy.logerr_throttle(1.0, "turtlesim tick failed (the simulation goes on): %r" % err)
 
     def render(self):
         with self.lock:

@@ -21,9 +21,11 @@ class Pen:
 
         `off` lifts the pen and changes nothing else; otherwise the pen goes down
         with the new colour, and the width changes only when `width` is non-zero.
+        Every number is held within 0..255, the range of set_pen's uint8 fields.
         """
         if off:
             return replace(self, on=False)
+        r, g, b, width = (min(max(int(v), 0), 255) for v in (r, g, b, width))
         return Pen(r, g, b, width if width else self.width, True)
 
     @property

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import threading
 import time
-from typing import Callable
+from typing import Callable, Optional
 
 
 class Ticker(threading.Thread):
@@ -11,15 +11,19 @@ class Ticker(threading.Thread):
 
     Deadlines are start + k * period, so lateness in one tick does not shift the
     following ones; if the callback falls more than one period behind, the
-    schedule restarts from now instead of bursting to catch up.
+    schedule restarts from now instead of bursting to catch up. An exception in `tick`
+    goes to `on_error` and the heartbeat goes on: one bad tick must not stop the simulator.
     """
 
-    def __init__(self, period: float, tick: Callable[[], None], name: str = "ticker") -> None:
+    def __init__(self, period: float, tick: Callable[[], None], name: str = "ticker",
+                 on_error: Optional[Callable[[Exception], None]] = None) -> None:
         super().__init__(name=name, daemon=True)
         self.period = period
         self._tick = tick
+        self._on_error = on_error
         self._halt = threading.Event()
         self.late_restarts = 0
+        self.failed_ticks = 0
 
     def stop(self) -> None:
         self._halt.set()
@@ -30,7 +34,12 @@ class Ticker(threading.Thread):
             delay = deadline - time.monotonic()
             if delay > 0 and self._halt.wait(delay):
                 break
-            self._tick()
+            try:
+                self._tick()
+            except Exception as err:  # noqa: BLE001  (whatever it was, the next tick must come)
+                self.failed_ticks += 1
+                if self._on_error is not None:
+                    self._on_error(err)
             deadline += self.period
             if time.monotonic() - deadline > self.period:
                 deadline = time.monotonic() + self.period

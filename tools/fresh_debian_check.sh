@@ -62,8 +62,11 @@ prepare() {
   done
   printf '127.0.0.1 localhost\n::1 localhost ip6-localhost ip6-loopback\n' > "$target/etc/hosts"
   cp /etc/resolv.conf "$target/etc/resolv.conf" 2>/dev/null || true
+  # The host's CA bundle both as the chroot's bundle now and as a local CA, so that installing
+  # ca-certificates in the chroot (update-ca-certificates rewrites the bundle) keeps it.
   mkdir -p "$target/usr/local/share/ca-certificates/host" "$target/etc/ssl/certs"
   cp /etc/ssl/certs/ca-certificates.crt "$target/etc/ssl/certs/ca-certificates.crt"
+  cp /etc/ssl/certs/ca-certificates.crt "$target/usr/local/share/ca-certificates/host/host-bundle.crt"
   [ -f /etc/pip.conf ] && cp /etc/pip.conf "$target/etc/pip.conf"
   mkdir -p "$target/course"
   # The checkout as a fresh clone has it: tracked files only (no build, devel, venv).

@@ -58,6 +58,12 @@ class Namespaces:
             if out.returncode != 0:
                 pytest.skip("ip netns add is not permitted here: %s" % out.stdout.strip())
             self.created.append(ns)
+        # `ip netns exec` remounts /sys for the namespace, which a chroot or an unprivileged
+        # container does not allow: then the test cannot run here, and says why.
+        probe = run(["ip", "netns", "exec", self.master, "true"])
+        if probe.returncode != 0:
+            pytest.skip("ip netns exec is not permitted here (a chroot or an unprivileged "
+                        "container?): %s" % probe.stdout.strip())
         steps = [["ip", "link", "add", self.veth_master, "type", "veth", "peer", "name", self.veth_pub],
                  ["ip", "link", "set", self.veth_master, "netns", self.master],
                  ["ip", "link", "set", self.veth_pub, "netns", self.pub]]

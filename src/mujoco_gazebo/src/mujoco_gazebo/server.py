@@ -225,6 +225,24 @@ class GazeboServer:
                                                     twist=[twist_to_msg(t) for t in twists]))
 
     def run(self) -> None:
+        """Step the world in a thread of its own until shutdown. Not in the main thread: rospy runs
+        its SIGINT/SIGTERM handler there, and a handler that interrupts a publish (the loop
+        publishes /clock at 200 Hz) closes that publisher's queued connection under the lock the
+        interrupted publish holds: the node hung for ever on Ctrl-C. The main thread only waits."""
+        physics = threading.Thread(target=self._physics, name="physics", daemon=True)
+        physics.start()
+        rospy.spin()
+        physics.join(timeout=5.0)
+
+    def _physics(self) -> None:
+        try:
+            self._loop()
+        except Exception as exc:  # a dead loop must not leave a node that answers but never steps
+            rospy.logfatal("gazebo: the simulation loop failed: %r" % exc)
+            rospy.signal_shutdown("simulation loop failed")
+            raise
+
+    def _loop(self) -> None:
         pacer = Pacer(self.rtf, time.monotonic(), self.world.time)
         self._rebase = False
         last_view = 0.0

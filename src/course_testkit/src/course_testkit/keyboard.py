@@ -51,7 +51,7 @@ class PtyKeyboard:
     def _launch(self, log_path: Optional[str]) -> None:
         command, _, env, output_on_pty = self._start
         self.master, slave = pty.openpty()
-        self.output = b""
+        self.terminal_text = b""
         try:
             self.node = NodeProcess(command, stdin=slave, log_path=log_path, env=env,
                                     stdout=slave if output_on_pty else None)
@@ -71,7 +71,7 @@ class PtyKeyboard:
     def read_until(self, text: bytes, timeout: float = 10.0) -> bool:
         """Collect what the node printed on the terminal until `text` shows up (True) or `timeout` passes."""
         deadline = time.monotonic() + timeout
-        while text not in self.output and time.monotonic() < deadline:
+        while text not in self.terminal_text and time.monotonic() < deadline:
             ready, _, _ = select.select([self.master], [], [], 0.05)
             if not ready:
                 continue
@@ -81,8 +81,8 @@ class PtyKeyboard:
                 break
             if not chunk:
                 break
-            self.output += chunk
-        return text in self.output
+            self.terminal_text += chunk
+        return text in self.terminal_text
 
     def wait(self, timeout: float = 10.0) -> Optional[int]:
         """The node's exit code once it exits by itself, or None if it is still running after `timeout`."""

@@ -44,8 +44,8 @@ class TeleopKey(unittest.TestCase):
 
     def test_arrows_publish_scaled_twists_and_q_quits(self):
         self.assertTrue(self.teleop.read_until(b"Use arrow keys to move the turtle. 'q' to quit."),
-                        self.teleop.output)
-        self.assertIn(b"Reading from keyboard", self.teleop.output)
+                        self.teleop.terminal_text)
+        self.assertIn(b"Reading from keyboard", self.teleop.terminal_text)
         self.assertTrue(wait_for(lambda: self.sub.get_num_connections() > 0, 10))
         self.warm_up()
         up = self.press("up")

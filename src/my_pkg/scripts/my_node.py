@@ -17,7 +17,7 @@ from std_msgs.msg import Float32
 from std_srvs.srv import Empty, Trigger, TriggerResponse
 from turtlesim.msg import Pose
 
-from my_pkg.arch import ArchError, ArchProgress
+from my_pkg.arch import ArchError, ArchProgress, positive_setting
 
 SETTLE_POSES = 3  # poses to skip after /reset: one published before the reset may still be queued
 
@@ -25,9 +25,9 @@ SETTLE_POSES = 3  # poses to skip after /reset: one published before the reset m
 class Draw:
     def __init__(self) -> None:
         rospy.init_node("drawer")
-        self.linear = float(rospy.get_param("~linear_speed", 1.0))
-        self.angular = float(rospy.get_param("~angular_speed", 0.5))
-        self.threshold = float(rospy.get_param("~threshold", 0.02))
+        self.linear = self._setting("~linear_speed", 1.0)
+        self.angular = self._setting("~angular_speed", 0.5)
+        self.threshold = self._setting("~threshold", 0.02)
         self.lock = threading.Lock()
         self.is_busy = False
         self.allowed_to_draw = True
@@ -39,6 +39,13 @@ class Draw:
         rospy.Service("resume_drawing", Trigger, self.resume_callback)
         rospy.Subscriber("/turtle1/pose", Pose, self.pose_callback, queue_size=1)
         rospy.Subscriber("draw_arch", Float32, self.draw_arch_callback, queue_size=10)
+
+    @staticmethod
+    def _setting(name: str, default: float) -> float:
+        value, problem = positive_setting(name, rospy.get_param(name, default), default)
+        if problem:
+            rospy.logwarn(problem)
+        return value
 
     def draw_arch_callback(self, msg: Float32) -> None:
         try:  # a bad angle gets its error even while drawing

@@ -14,6 +14,18 @@ class ArchError(ValueError):
     """The requested arch angle is not a number in [0, 2*pi]."""
 
 
+def positive_setting(name: str, value: object, default: float) -> "tuple[float, str]":
+    """A speed or threshold read from a parameter: the value when it is a finite number > 0,
+    else the default and a sentence saying why (the node logs it and keeps running)."""
+    try:
+        number = float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        number = math.nan
+    if math.isfinite(number) and number > 0:
+        return number, ""
+    return default, "%s must be a finite number > 0, got %r; using %s" % (name, value, default)
+
+
 def check_angle(angle: float) -> float:
     if not math.isfinite(angle) or not 0.0 <= angle <= 2.0 * math.pi + 1e-6:
         raise ArchError("Angle must be in range [0, 2PI], got %r" % angle)

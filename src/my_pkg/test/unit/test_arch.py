@@ -2,7 +2,7 @@ import math
 
 import pytest
 
-from my_pkg.arch import ArchError, ArchProgress, check_angle, wrap
+from my_pkg.arch import ArchError, ArchProgress, check_angle, positive_setting, wrap
 
 
 @pytest.mark.parametrize("bad", [float("nan"), float("inf"), -0.1, 7.0])
@@ -47,3 +47,15 @@ def test_a_non_finite_heading_does_not_poison_the_progress():
     assert not p.update(float("nan"))
     assert not p.update(float("inf"))
     assert p.update(1.0)  # was never done: the sum had become NaN
+
+
+@pytest.mark.parametrize("value", ["abc", None, float("nan"), float("inf"), -1.0, 0, [1]])
+def test_bad_settings_fall_back_to_the_default_with_a_reason(value):
+    number, problem = positive_setting("~linear_speed", value, 1.0)
+    assert number == 1.0
+    assert "~linear_speed must be a finite number > 0" in problem
+
+
+@pytest.mark.parametrize("value", [2, "0.5", 1e-3])
+def test_good_settings_are_kept(value):
+    assert positive_setting("~threshold", value, 0.02) == (float(value), "")

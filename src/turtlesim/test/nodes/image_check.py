@@ -50,9 +50,15 @@ class TurtlesimImage(unittest.TestCase):
         self.assertIsNotNone(image.wait(timeout=10))
         image.unregister()
 
+    @staticmethod
+    def _remove(path: str) -> None:
+        if path.endswith(".png") and os.path.isfile(path):
+            os.remove(path)
+
     def test_snapshot_writes_a_png_and_answers_its_path(self):
         answer = rospy.ServiceProxy("/turtlesim/snapshot", Trigger)()
         self.assertTrue(answer.success, answer.message)
+        self.addCleanup(self._remove, answer.message)  # the node's default folder: leave nothing there
         self.assertTrue(os.path.isfile(answer.message), answer.message)
         self.assertTrue(answer.message.endswith(".png"))
         png = QImage(answer.message)
@@ -60,6 +66,7 @@ class TurtlesimImage(unittest.TestCase):
         corner = png.pixelColor(2, 2)
         self.assertEqual((corner.red(), corner.green(), corner.blue()), DEFAULT_BACKGROUND_RGB)
         second = rospy.ServiceProxy("/turtlesim/snapshot", Trigger)()
+        self.addCleanup(self._remove, second.message)
         self.assertNotEqual(second.message, answer.message, "each snapshot gets its own file")
 
 

@@ -99,3 +99,10 @@ def live_node_settings(max_examples: int) -> settings:
 def is_wrapped_angle(theta: float) -> bool:
     """True for an angle in [-pi, pi] (turtlesim's and tf's normal form)."""
     return math.isfinite(theta) and -math.pi - 1e-6 <= theta <= math.pi + 1e-6
+
+
+def is_sane_pose(pose) -> bool:
+    """True for a turtlesim Pose (anything with its five fields) whose fields are all finite and
+    whose theta is wrapped: what every fuzz check asks of turtlesim after each example."""
+    fields = (pose.x, pose.y, pose.theta, pose.linear_velocity, pose.angular_velocity)
+    return all(math.isfinite(v) for v in fields) and is_wrapped_angle(pose.theta)

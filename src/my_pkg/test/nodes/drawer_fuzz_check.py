@@ -14,7 +14,7 @@ from rosgraph_msgs.msg import Log
 from std_msgs.msg import Float32
 from std_srvs.srv import Trigger
 
-from course_testkit.fuzz import as_float32, is_wrapped_angle, wild_float32s
+from course_testkit.fuzz import as_float32, is_sane_pose, wild_float32s
 from course_testkit.fuzz import live_node_settings as fuzz
 from course_testkit.recorders import RosoutRecorder, TopicRecorder
 from course_testkit.waiting import wait_for
@@ -43,8 +43,7 @@ class DrawerFuzz(unittest.TestCase):
         start = self.pose.count
         pose = self.pose.wait(lambda p: self.pose.count >= start + 2, timeout=3.0)
         self.assertIsNotNone(pose, "turtlesim stopped publishing poses")
-        self.assertTrue(all(math.isfinite(v) for v in (pose.x, pose.y, pose.theta)) and is_wrapped_angle(pose.theta),
-                        pose)
+        self.assertTrue(is_sane_pose(pose), pose)
         self.assertTrue(rosnode.rosnode_ping("/drawer", max_count=1), "the drawer does not answer")
         self.assertTrue(self.resume().success)
 

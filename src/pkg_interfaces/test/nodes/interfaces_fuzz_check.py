@@ -14,12 +14,11 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from course_testkit.fuzz import live_node_settings as fuzz
-from course_testkit.fuzz import wild_ints
+from course_testkit.fuzz import INT32, wild_ints
 from course_testkit.waiting import wait_for
 from pkg_interfaces.msg import ProgressAction, ProgressGoal
 from pkg_interfaces.srv import Add
 
-INT32 = (-2 ** 31, 2 ** 31 - 1)
 MAX_NUM = 2 ** 32 - 1  # the largest num whose sum 1..num fits int64
 WAIT_S = 10.0  # generous: the machine may be busy; a healthy server answers in ~0.1 s
 

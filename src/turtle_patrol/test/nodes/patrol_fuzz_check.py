@@ -10,7 +10,7 @@ import rostest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from course_testkit.fuzz import as_float32, is_wrapped_angle, wild_float32s
+from course_testkit.fuzz import as_float32, is_sane_pose, wild_float32s
 from course_testkit.fuzz import live_node_settings as fuzz
 from course_testkit.recorders import TopicRecorder
 from turtle_patrol.srv import Patrol
@@ -37,9 +37,7 @@ class PatrolFuzz(unittest.TestCase):
         start = self.pose.count
         pose = self.pose.wait(lambda p: self.pose.count >= start + 3 and condition(p), timeout=3.0)
         self.assertIsNotNone(pose, "no fitting fresh pose from turtlesim (last %s)" % self.pose.last)
-        self.assertTrue(all(math.isfinite(v) for v in (pose.x, pose.y, pose.theta, pose.linear_velocity,
-                                                       pose.angular_velocity)), pose)
-        self.assertTrue(is_wrapped_angle(pose.theta), "theta %r is not wrapped" % pose.theta)
+        self.assertTrue(is_sane_pose(pose), "pose not finite or theta not wrapped: %s" % pose)
         for node in ("/patrol_server", "/turtlesim"):
             self.assertTrue(rosnode.rosnode_ping(node, max_count=1), "%s does not answer" % node)
         rospy.wait_for_service("/turtle1/patrol", 5)

@@ -1,6 +1,5 @@
 #!/usr/bin/env python3
 """Bad input to turtlesim_node: refused with a message, node alive, pose finite."""
-import math
 import unittest
 
 import rospy
@@ -10,12 +9,9 @@ from std_srvs.srv import Empty
 
 from turtlesim.msg import Pose
 from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute, TeleportRelative
+from course_testkit.fuzz import is_sane_pose
 from course_testkit.recorders import RosoutRecorder, TopicRecorder
 from course_testkit.waiting import wait_for
-
-
-def finite(p: Pose) -> bool:
-    return all(math.isfinite(v) for v in (p.x, p.y, p.theta, p.linear_velocity, p.angular_velocity))
 
 
 class TurtlesimErrors(unittest.TestCase):
@@ -32,7 +28,7 @@ class TurtlesimErrors(unittest.TestCase):
         count = self.pose.count
         p = self.pose.wait(lambda p: self.pose.count > count + 2)
         self.assertIsNotNone(p, "turtlesim stopped publishing")
-        self.assertTrue(finite(p), p)
+        self.assertTrue(is_sane_pose(p), p)
         rospy.ServiceProxy("/clear", Empty)()
 
     def test_nan_and_inf_cmd_vel_are_ignored_with_a_warning(self):

@@ -19,7 +19,8 @@ from hypothesis import example, given
 from hypothesis import strategies as st
 from std_srvs.srv import Empty
 
-from course_testkit.fuzz import FLOAT32_MAX, as_float32, is_wrapped_angle, wild_float32s, wild_floats, wild_names
+from course_testkit.fuzz import (FLOAT32_MAX, as_float32, is_sane_pose, is_wrapped_angle, wild_float32s,
+                                 wild_floats, wild_names)
 from course_testkit.fuzz import live_node_settings as fuzz
 from course_testkit.recorders import TopicRecorder
 from course_testkit.waiting import wait_for
@@ -32,9 +33,7 @@ REFUSALS = ("non-finite", "invalid turtle name", "already exists", "does not exi
 
 
 def sane(p: Pose) -> bool:
-    return (all(math.isfinite(v) for v in (p.x, p.y, p.theta, p.linear_velocity, p.angular_velocity))
-            and 0.0 <= p.x <= WORLD_SIZE + 1e-4 and 0.0 <= p.y <= WORLD_SIZE + 1e-4
-            and is_wrapped_angle(p.theta))
+    return is_sane_pose(p) and 0.0 <= p.x <= WORLD_SIZE + 1e-4 and 0.0 <= p.y <= WORLD_SIZE + 1e-4
 
 
 class TurtlesimFuzz(unittest.TestCase):

@@ -3,12 +3,29 @@ resolve to NAME/model.sdf in the directories of GAZEBO_MODEL_PATH, then the mode
 shipped with this package (coke_can, ground_plane, sun). Nothing is downloaded."""
 from __future__ import annotations
 
+import functools
 import os
 import xml.etree.ElementTree as ET
 from pathlib import Path
 from typing import List, Optional
 
-SHIPPED = Path(__file__).resolve().parents[2] / "models"
+PACKAGE = "mujoco_gazebo"
+
+
+@functools.lru_cache(maxsize=1)
+def package_share() -> Path:
+    """This package's share folder: the source folder in a devel space, share/mujoco_gazebo in
+    an install space (rospkg asks ROS_PACKAGE_PATH, as roslaunch's $(find) does). Without a
+    ROS environment, the source tree this module sits in."""
+    try:
+        import rospkg
+        return Path(rospkg.RosPack().get_path(PACKAGE))
+    except Exception:  # rospkg missing, or the package not on ROS_PACKAGE_PATH
+        return Path(__file__).resolve().parents[2]
+
+
+def shipped_models() -> Path:
+    return package_share() / "models"
 
 
 class DatabaseError(LookupError):
@@ -18,7 +35,7 @@ class DatabaseError(LookupError):
 def search_path(env: Optional[dict] = None) -> List[Path]:
     env = os.environ if env is None else env
     dirs = [Path(p) for p in env.get("GAZEBO_MODEL_PATH", "").split(":") if p]
-    return dirs + [SHIPPED]
+    return dirs + [shipped_models()]
 
 
 def model_names(env: Optional[dict] = None) -> List[str]:

@@ -47,7 +47,7 @@ def test_pose_needs_six_finite_numbers():
 
 
 def test_world_file_includes_and_physics():
-    w = parse_world(open(database.SHIPPED.parent / "worlds" / "empty.world").read())
+    w = parse_world(open(database.package_share() / "worlds" / "empty.world").read())
     assert [i.uri for i in w.includes] == ["model://sun", "model://ground_plane"]
     assert w.max_step_size == 0.001 and w.real_time_factor == 1
 

@@ -7,7 +7,7 @@ import unittest
 
 import rospy
 import rostest
-from course_graph.screen import VirtualDisplay
+from course_testkit.screen import VirtualDisplay, grab_screen
 
 from turtlesim.srv import SetPen, TeleportAbsolute
 
@@ -27,9 +27,7 @@ class TurtlesimWindow(unittest.TestCase):
             shot = os.path.join(os.environ.get("ROS_HOME", "/tmp"), "turtlesim_window.png")
             stats = None
             for _attempt in range(50):  # the window maps and paints asynchronously
-                out = subprocess.run(["rosrun", "course_graph", "x_screenshot", shot], env=env,
-                                     stdout=subprocess.PIPE, text=True, timeout=30)
-                stats = json.loads(out.stdout.strip().splitlines()[-1])
+                stats = json.loads(grab_screen(display.display, shot))
                 if stats["reddish"] > 100 and stats["distinct"] > 5:
                     break
                 rospy.sleep(0.2)

@@ -1,6 +1,6 @@
 """Capture the X root window to a PNG with PyQt5 and print its colour statistics as JSON.
 
-Run as `python3 -m course_graph.qt_capture OUT.png [--region X Y W H]` with DISPLAY set
+Run as `python3 -m course_testkit.qt_capture OUT.png [--region X Y W H]` with DISPLAY set
 (QT_QPA_PLATFORM=xcb); no ImageMagick or xwd needed. Pixels are sampled every 2nd row/column.
 """
 from __future__ import annotations
@@ -10,7 +10,7 @@ import json
 import sys
 from typing import Iterator, List, Optional
 
-from course_graph.screen import RGB, colour_stats
+from course_testkit.screen import RGB, colour_stats
 
 
 def pixels_of(image, region: Optional[List[int]] = None, step: int = 2) -> Iterator[RGB]:
@@ -22,7 +22,7 @@ def pixels_of(image, region: Optional[List[int]] = None, step: int = 2) -> Itera
 
 
 def main(argv: Optional[List[str]] = None) -> int:
-    parser = argparse.ArgumentParser(prog="x_screenshot", description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog="python3 -m course_testkit.qt_capture", description=__doc__.splitlines()[0])
     parser.add_argument("output")
     parser.add_argument("--region", type=int, nargs=4, metavar=("X", "Y", "W", "H"),
                         help="only count colours inside this rectangle (the whole screen is saved)")
@@ -31,7 +31,7 @@ def main(argv: Optional[List[str]] = None) -> int:
     app = QApplication(sys.argv[:1])
     image = app.primaryScreen().grabWindow(0).toImage()
     if not image.save(args.output):
-        print("x_screenshot: could not write %s" % args.output, file=sys.stderr)
+        print("qt_capture: could not write %s" % args.output, file=sys.stderr)
         return 1
     stats = colour_stats(pixels_of(image, args.region))
     print(args.output)

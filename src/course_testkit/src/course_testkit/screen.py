@@ -94,8 +94,8 @@ def grab_screen(display: str, path: str, timeout_s: float = 30.0) -> str:
     Returns the capture's last output line: JSON colour statistics (see qt_capture)."""
     env = dict(os.environ, DISPLAY=display, QT_QPA_PLATFORM="xcb")
     env.setdefault("XDG_RUNTIME_DIR", tempfile.mkdtemp(prefix="xdg-"))
-    out = subprocess.run([sys.executable, "-m", "course_graph.qt_capture", path], env=env,
+    out = subprocess.run([sys.executable, "-m", "course_testkit.qt_capture", path], env=env,
                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=timeout_s)
     if out.returncode != 0:
-        raise RuntimeError("x_screenshot failed: %s" % out.stdout)
+        raise RuntimeError("screen capture failed: %s" % out.stdout)
     return out.stdout.strip().splitlines()[-1]

@@ -2,7 +2,7 @@ import shutil
 
 import pytest
 
-from course_graph.screen import VirtualDisplay, colour_stats
+from course_testkit.screen import VirtualDisplay, colour_stats
 
 
 def test_uniform_image_is_blank():

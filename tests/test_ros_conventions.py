@@ -166,3 +166,19 @@ def test_the_import_check_sees_a_missing_dependency(tmp_path, monkeypatch):
     monkeypatch.setattr(sys.modules[__name__], "SRC", str(tmp_path / "src"))
     assert undeclared_imports() == [
         "lonely/nodes/talk imports numpy: package.xml lacks <exec_depend>python3-numpy</exec_depend>"]
+
+
+def test_every_rostest_is_registered():
+    """`catkin_make run_tests` runs a package's test/*.test only if its CMakeLists names it; an
+    explicit add_rostest line (no file(GLOB), which misses a new file until CMake reruns)."""
+    missing = []
+    for name, folder in packages().items():
+        test_dir = os.path.join(folder, "test")
+        if not os.path.isdir(test_dir):
+            continue
+        with open(os.path.join(folder, "CMakeLists.txt")) as f:
+            cmake = f.read()
+        for launch in sorted(n for n in os.listdir(test_dir) if n.endswith(".test")):
+            if "add_rostest(test/%s)" % launch not in cmake:
+                missing.append("%s: CMakeLists.txt lacks add_rostest(test/%s)" % (name, launch))
+    assert not missing, "\n".join(missing)

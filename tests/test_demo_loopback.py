@@ -69,7 +69,12 @@ def test_every_listening_socket_of_the_demo_is_on_loopback(tmp_path: Path) -> No
     def demo_ended() -> bool:
         ended = demo.poll() is not None
         if not ended:
-            seen.update(listeners(set(pids_with_token(token)) | set(descendants(demo.pid)) | {demo.pid}))
+            now = listeners(set(pids_with_token(token)) | set(descendants(demo.pid)) | {demo.pid})
+            for key, cmd in now.items():
+                # A process that is exiting may still own its socket but has no command line
+                # left: keep the one an earlier sample read.
+                if cmd or key not in seen:
+                    seen[key] = cmd
         return ended
 
     try:

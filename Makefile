@@ -5,7 +5,7 @@ WS := $(ROOT)/catkin_ws
 # Every ROS command runs in the workspace environment, with the venv's python3 first.
 ROSENV := source $(WS)/devel/setup.bash &&
 
-.PHONY: deps build demo test flake-hunt unit rostest grade autograder bench bench-grade clean
+.PHONY: deps build demo test flake-hunt unit rostest grade autograder bench bench-grade docker-check clean
 
 deps:
 	@bash $(ROOT)/tools/deps.sh
@@ -45,6 +45,11 @@ bench: build
 # The grader's trust and speed: the reference graded 20 times, then a class of 30 (about 45 min).
 bench-grade: build
 	@$(ROSENV) cd $(ROOT) && python3 bench/grade_bench.py
+
+# docker/Dockerfile built without a Docker engine, in a debootstrap chroot, then its CMD (the demo)
+# run as the image's user. Needs root; downloads ~1 GB; 10-20 min. DOCKER_CHECK_ARGS="--keep" etc.
+docker-check:
+	@python3 $(ROOT)/tools/dockerfile_chroot.py -f $(ROOT)/docker/Dockerfile --run-cmd $(DOCKER_CHECK_ARGS) $(ROOT)
 
 clean:
 	rm -rf $(WS)/build $(WS)/devel $(WS)/build.log

@@ -6,8 +6,8 @@
 #
 #   sudo bash tools/fresh_debian_check.sh [--keep] [--only-demo]
 #
-# Needs root and debootstrap (installed if missing). The host's CA certificates and pip
-# config are copied in so the chroot reaches the same package registries as the host.
+# Needs root and debootstrap (installed if missing). The chroot is made, prepared (mounts, hosts,
+# the host's CA certificates and pip config) and released by tools/chroot_root.sh.
 set -eo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 keep=0
@@ -20,19 +20,16 @@ for arg in "$@"; do
   esac
 done
 [ "$(id -u)" -eq 0 ] || { echo "fresh_debian_check: needs root (debootstrap, chroot, mount)" >&2; exit 2; }
-command -v debootstrap >/dev/null || { apt-get update -qq && apt-get install -y -qq debootstrap >/dev/null; }
+chroot_root=(bash "$root/tools/chroot_root.sh")
 
-mirror="$(sed -n 's/^URIs: *//p' /etc/apt/sources.list.d/debian.sources 2>/dev/null | head -n1)"
-mirror="${mirror:-http://deb.debian.org/debian}"
 work="$(mktemp -d /var/tmp/fresh-debian.XXXXXX)"
 target="$work/root"
 log="$work/log"
 mkdir -p "$log"
-mounted=()
 
 cleanup() {
-  for ((i=${#mounted[@]}-1; i>=0; i--)); do umount -l "${mounted[$i]}" 2>/dev/null || true; done
-  if [ "$keep" -eq 1 ]; then echo "kept: $work"; else rm -rf "$work"; fi
+  if ! "${chroot_root[@]}" release "$target"; then echo "left in place (still mounted): $work"; return; fi
+  if [ "$keep" -eq 1 ]; then echo "kept: $work"; else rm -rf --one-file-system "$work"; fi
 }
 trap cleanup EXIT
 
@@ -53,21 +50,10 @@ in_chroot() {
     PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin bash -c "$1"
 }
 
-bootstrap() { debootstrap --variant=minbase bookworm "$target" "$mirror"; }
+bootstrap() { "${chroot_root[@]}" bootstrap "$target"; }
 
 prepare() {
-  for fs in proc sys dev dev/pts; do
-    mount --bind "/$fs" "$target/$fs"
-    mounted+=("$target/$fs")
-  done
-  printf '127.0.0.1 localhost\n::1 localhost ip6-localhost ip6-loopback\n' > "$target/etc/hosts"
-  cp /etc/resolv.conf "$target/etc/resolv.conf" 2>/dev/null || true
-  # The host's CA bundle both as the chroot's bundle now and as a local CA, so that installing
-  # ca-certificates in the chroot (update-ca-certificates rewrites the bundle) keeps it.
-  mkdir -p "$target/usr/local/share/ca-certificates/host" "$target/etc/ssl/certs"
-  cp /etc/ssl/certs/ca-certificates.crt "$target/etc/ssl/certs/ca-certificates.crt"
-  cp /etc/ssl/certs/ca-certificates.crt "$target/usr/local/share/ca-certificates/host/host-bundle.crt"
-  [ -f /etc/pip.conf ] && cp /etc/pip.conf "$target/etc/pip.conf"
+  "${chroot_root[@]}" prepare "$target"
   mkdir -p "$target/course"
   # The checkout as a fresh clone has it: tracked files only (no build, devel, venv).
   git -C "$root" ls-files -z | (cd "$root" && tar --null -T - -cf -) | tar -xf - -C "$target/course"

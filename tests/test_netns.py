@@ -142,7 +142,7 @@ def test_publisher_on_another_host_drives_the_turtle(machines: Namespaces) -> No
         moved.stdout, (machines.tmp / "pub.log").read_text()[-2000:])
     # Both sides' settings are right, and every node is reachable from either host.
     for ns, ip in ((machines.pub, PUB_IP), (machines.master, MASTER_IP)):
-        check = machines.call(ns, ip, ["rosrun", "course_graph", "ros_net_check"])
+        check = machines.call(ns, ip, ["rosrun", "course_netcheck", "ros_net_check"])
         assert check.returncode == 0, check.stdout
         assert "all" in check.stdout and "reachable at their registered URIs" in check.stdout
 
@@ -156,12 +156,12 @@ def test_wrong_ros_ip_is_diagnosed(machines: Namespaces) -> None:
     still = machines.call(machines.master, MASTER_IP, PROBE + ["moves", "5", "0.2"])
     assert still.returncode == 1, "the turtle moved although ROS_IP was wrong: " + still.stdout
 
-    on_publisher = machines.call(machines.pub, WRONG_IP, ["rosrun", "course_graph", "ros_net_check"])
+    on_publisher = machines.call(machines.pub, WRONG_IP, ["rosrun", "course_netcheck", "ros_net_check"])
     assert on_publisher.returncode == 1
     assert "ROS_IP=%s is not an address of this host" % WRONG_IP in on_publisher.stdout
     assert PUB_IP in on_publisher.stdout  # names the address that would work
 
-    on_master = machines.call(machines.master, MASTER_IP, ["rosrun", "course_graph", "ros_net_check"])
+    on_master = machines.call(machines.master, MASTER_IP, ["rosrun", "course_netcheck", "ros_net_check"])
     print("ros_net_check on the publisher's host:\n%s\non the master's host:\n%s" % (on_publisher.stdout,
                                                                                   on_master.stdout))
     assert on_master.returncode == 1

@@ -1,4 +1,4 @@
-from course_graph.netcheck import (ERROR, OK, WARNING, NetworkSettings, diagnose_reachability, diagnose_settings,
+from course_netcheck.diagnosis import (ERROR, OK, WARNING, NetworkSettings, diagnose_reachability, diagnose_settings,
                                    has_errors, host_port, parse_ip_addr)
 
 IP_ADDR = """1: lo    inet 127.0.0.1/8 scope host lo\\       valid_lft forever preferred_lft forever

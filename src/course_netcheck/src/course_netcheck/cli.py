@@ -12,7 +12,7 @@ import subprocess
 import sys
 from typing import Dict, List, Optional, Set
 
-from course_graph.netcheck import (ERROR, Finding, NetworkSettings, diagnose_reachability, diagnose_settings, has_errors,
+from course_netcheck.diagnosis import (ERROR, Finding, NetworkSettings, diagnose_reachability, diagnose_settings, has_errors,
                                    parse_ip_addr)
 
 

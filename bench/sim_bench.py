@@ -19,10 +19,10 @@ from rosenv import cpu_seconds, free_port  # noqa: E402
 
 def engine_rtf(urdf: Path, lidar_body: str = "", seconds: float = 20.0) -> float:
     sys.path.insert(0, str(ROOT / "src" / "mujoco_gazebo" / "src"))
-    from mujoco_gazebo import database
-    from mujoco_gazebo.frames import Pose
-    from mujoco_gazebo.lidar import Lidar, ScanConfig
-    from mujoco_gazebo.world import World
+    from mujoco_gazebo.engine import database
+    from mujoco_gazebo.engine.frames import Pose
+    from mujoco_gazebo.engine.lidar import Lidar, ScanConfig
+    from mujoco_gazebo.engine.world import World
     import mujoco
     w = World()
     w.spawn("ground_plane", database.model_sdf("ground_plane"), Pose())
@@ -44,10 +44,10 @@ def engine_rtf(urdf: Path, lidar_body: str = "", seconds: float = 20.0) -> float
 def camera_render_ms(urdf: Path, frames: int = 30) -> str:
     """Median time to render one RRBot camera frame (default 320x240), or why it cannot."""
     sys.path.insert(0, str(ROOT / "src" / "mujoco_gazebo" / "src"))
-    from mujoco_gazebo import database
-    from mujoco_gazebo.camera import BodyCamera, CameraConfig, RenderUnavailable
-    from mujoco_gazebo.frames import Pose
-    from mujoco_gazebo.world import World
+    from mujoco_gazebo.engine import database
+    from mujoco_gazebo.engine.camera import BodyCamera, CameraConfig, RenderUnavailable
+    from mujoco_gazebo.engine.frames import Pose
+    from mujoco_gazebo.engine.world import World
     import mujoco
     w = World()
     w.spawn("ground_plane", database.model_sdf("ground_plane"), Pose())

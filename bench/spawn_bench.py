@@ -28,7 +28,7 @@ def main() -> None:
         import rospy
         from gazebo_msgs.srv import DeleteModel, SpawnModel
         from geometry_msgs.msg import Pose
-        from mujoco_gazebo import database
+        from mujoco_gazebo.engine import database
         rospy.init_node("spawn_bench", anonymous=True, disable_signals=True)
         rospy.wait_for_service("/gazebo/delete_model", 60)
         uri = rosgraph.Master("/spawn_bench").lookupNode("/gazebo")

@@ -67,7 +67,7 @@ def run(env: Dict[str, str], *command: str, timeout: float = 60.0) -> subprocess
 
 
 def test_python_sees_rospy_qt_mujoco_and_the_installed_modules(install_space, install_env):
-    probe = ("import rospy, PyQt5, mujoco, turtlesim.turtle, mujoco_gazebo.database as d;"
+    probe = ("import rospy, PyQt5, mujoco, turtlesim.turtle, mujoco_gazebo.engine.database as d;"
              "print(turtlesim.turtle.__file__); print(d.shipped_models())")
     result = run(install_env, "python3", "-c", probe)
     assert result.returncode == 0, result.stdout

@@ -7,11 +7,11 @@ import mujoco
 import numpy as np
 import pytest
 
-from mujoco_gazebo import database
-from mujoco_gazebo.appearance import urdf_link_colours
-from mujoco_gazebo.camera import BodyCamera, CameraConfig, RenderUnavailable, backend_order, open_gl_context
-from mujoco_gazebo.frames import Pose
-from mujoco_gazebo.world import World
+from mujoco_gazebo.engine import database
+from mujoco_gazebo.engine.appearance import urdf_link_colours
+from mujoco_gazebo.engine.camera import BodyCamera, CameraConfig, RenderUnavailable, backend_order, open_gl_context
+from mujoco_gazebo.engine.frames import Pose
+from mujoco_gazebo.engine.world import World
 
 RRBOT = (Path(__file__).resolve().parents[3] / "rrbot_description" / "urdf" / "rrbot.urdf").read_text()
 

@@ -1,7 +1,7 @@
 """Sim-time stamps: exact multiples of the step, as Gazebo's integer clock gives them."""
 import mujoco
 
-from mujoco_gazebo.conversions import stamp_from_sim
+from mujoco_gazebo.ros.conversions import stamp_from_sim
 
 
 def test_float_sum_of_steps_stamps_the_whole_millisecond():

@@ -1,6 +1,6 @@
 import math
 
-from mujoco_gazebo.diffdrive import DiffDriveGeometry, WheelOdometry, body_twist, wheel_speeds
+from mujoco_gazebo.engine.diffdrive import DiffDriveGeometry, WheelOdometry, body_twist, wheel_speeds
 
 BURGER = DiffDriveGeometry()
 

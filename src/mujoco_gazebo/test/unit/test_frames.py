@@ -2,7 +2,7 @@ import math
 
 import numpy as np
 
-from mujoco_gazebo.frames import Pose, Twist, quat_from_rpy, twist_relative, twist_to_world, yaw_of
+from mujoco_gazebo.engine.frames import Pose, Twist, quat_from_rpy, twist_relative, twist_to_world, yaw_of
 
 
 def test_compose_then_relative_round_trip():

@@ -9,10 +9,10 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from course_testkit.fuzz import wild_floats
-from mujoco_gazebo import database
-from mujoco_gazebo.frames import Pose, Twist, normalize_quat
-from mujoco_gazebo.limits import WORLD_BOUND_M, pose_problem, twist_problem
-from mujoco_gazebo.world import World, WorldError
+from mujoco_gazebo.engine import database
+from mujoco_gazebo.engine.frames import Pose, Twist, normalize_quat
+from mujoco_gazebo.engine.limits import WORLD_BOUND_M, pose_problem, twist_problem
+from mujoco_gazebo.engine.world import World, WorldError
 
 SRC = Path(__file__).resolve().parents[3]
 RRBOT = (SRC / "rrbot_description" / "urdf" / "rrbot.urdf").read_text()

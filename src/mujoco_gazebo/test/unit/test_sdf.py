@@ -4,8 +4,8 @@ import mujoco
 import numpy as np
 import pytest
 
-from mujoco_gazebo import database
-from mujoco_gazebo.sdf import SdfError, parse_pose, parse_world, sdf_to_mjcf
+from mujoco_gazebo.engine import database
+from mujoco_gazebo.engine.sdf import SdfError, parse_pose, parse_world, sdf_to_mjcf
 
 BOX = """<sdf version="1.6"><model name="m"><pose>0 0 1 0 0 0</pose>
 <link name="base"><pose>1 0 0 0 0 1.5707963</pose>

@@ -8,10 +8,10 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
-from mujoco_gazebo import database
-from mujoco_gazebo.frames import Pose
-from mujoco_gazebo.settling import StillnessDetector
-from mujoco_gazebo.world import World
+from mujoco_gazebo.engine import database
+from mujoco_gazebo.engine.frames import Pose
+from mujoco_gazebo.engine.settling import StillnessDetector
+from mujoco_gazebo.engine.world import World
 
 RRBOT = (Path(__file__).resolve().parents[3] / "rrbot_description" / "urdf" / "rrbot.urdf").read_text()
 

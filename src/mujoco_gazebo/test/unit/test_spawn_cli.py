@@ -2,7 +2,7 @@ import math
 
 import pytest
 
-from mujoco_gazebo.spawn_cli import UsageError, load_xml, parse_args
+from mujoco_gazebo.ros.spawn_cli import UsageError, load_xml, parse_args
 
 
 def test_text_003_command_line():

@@ -4,10 +4,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mujoco_gazebo import database
-from mujoco_gazebo.frames import Pose, Twist, quat_from_rpy
-from mujoco_gazebo.lidar import Lidar, ScanConfig
-from mujoco_gazebo.world import World, WorldError
+from mujoco_gazebo.engine import database
+from mujoco_gazebo.engine.frames import Pose, Twist, quat_from_rpy
+from mujoco_gazebo.engine.lidar import Lidar, ScanConfig
+from mujoco_gazebo.engine.world import World, WorldError
 
 SRC = Path(__file__).resolve().parents[3]
 RRBOT = (SRC / "rrbot_description" / "urdf" / "rrbot.urdf").read_text()

@@ -3,9 +3,9 @@ current qpos/qvel, so spawning or deleting another model (which recomputes the k
 leaves every other model's reported state exactly as it was, as Gazebo does."""
 import numpy as np
 
-from mujoco_gazebo import database
-from mujoco_gazebo.frames import Pose
-from mujoco_gazebo.world import World
+from mujoco_gazebo.engine import database
+from mujoco_gazebo.engine.frames import Pose
+from mujoco_gazebo.engine.world import World
 
 BOX = ("<robot name='b'><link name='l'><inertial><mass value='0.5'/><inertia ixx='1e-3' iyy='1e-3' izz='1e-3' "
        "ixy='0' ixz='0' iyz='0'/></inertial><collision><geometry><box size='0.1 0.1 0.1'/></geometry></collision>"

@@ -4,8 +4,8 @@ from __future__ import annotations
 import rospy
 from geometry_msgs.msg import Pose as PoseMsg, Twist as TwistMsg
 
-from .frames import Pose, Twist
-from .limits import pose_problem, twist_problem
+from ..engine.frames import Pose, Twist
+from ..engine.limits import pose_problem, twist_problem
 
 
 def stamp_from_sim(seconds: float) -> rospy.Time:

@@ -17,14 +17,14 @@ from gazebo_msgs.srv import (DeleteModel, DeleteModelResponse, GetLinkState, Get
 from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Empty, EmptyResponse
 
-from . import database
+from ..engine import database
+from ..engine.frames import Pose, twist_relative
+from ..engine.pacing import Pacer
+from ..engine.sdf import SdfError, parse_world
+from ..engine.world import World, WorldError
+from ..plugins import Plugin, make_plugins
 from .conversions import (pose_from_msg, pose_msg_problem, pose_to_msg, stamp_from_sim, twist_from_msg,
                           twist_msg_problem, twist_to_msg)
-from .frames import Pose
-from .pacing import Pacer
-from .ros_plugins import RobotPlugin, make_plugins
-from .sdf import SdfError, parse_world
-from .world import World, WorldError
 
 
 class GazeboServer:
@@ -42,7 +42,7 @@ class GazeboServer:
         self.world = World(timestep=step, gravity=gravity)
         self.world.paused = paused
         self.lock = threading.Lock()
-        self.plugins: Dict[str, List[RobotPlugin]] = {}
+        self.plugins: Dict[str, List[Plugin]] = {}
         self.rtf = real_time_factor
         self.steps_per_update = max(1, int(steps_per_update))
         self.states_period = 1.0 / states_rate if states_rate > 0 else 0.0
@@ -146,7 +146,6 @@ class GazeboServer:
             try:
                 bid = self.world.entity_body(req.link_name)
                 ref_pose, ref_twist = self.world.frame_state(req.reference_frame)
-                from .frames import twist_relative
                 pose = self.world.body_pose(bid).relative_to(ref_pose)
                 twist = twist_relative(self.world.body_twist(bid), ref_twist, ref_pose)
             except WorldError as exc:

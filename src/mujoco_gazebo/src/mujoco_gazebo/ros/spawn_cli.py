@@ -112,7 +112,7 @@ def load_xml(args: SpawnArgs, get_param=None, stdin=None) -> str:
             raise UsageError("parameter %s is not set or empty" % args.source_value)
         return str(text)
     if args.source == "database":
-        from . import database
+        from ..engine import database
         try:
             return database.model_sdf(args.source_value)
         except database.DatabaseError as exc:
@@ -152,7 +152,7 @@ def _spawn(args: SpawnArgs, xml: str) -> int:
     from geometry_msgs.msg import Pose as PoseMsg
     from std_srvs.srv import Empty
 
-    from .frames import quat_from_rpy
+    from ..engine.frames import quat_from_rpy
 
     ns = args.gazebo_namespace.rstrip("/")
     service = "%s/spawn_%s_model" % (ns, args.fmt)

@@ -21,7 +21,7 @@ def package_share() -> Path:
         import rospkg
         return Path(rospkg.RosPack().get_path(PACKAGE))
     except Exception:  # rospkg missing, or the package not on ROS_PACKAGE_PATH
-        return Path(__file__).resolve().parents[2]
+        return Path(__file__).resolve().parents[3]
 
 
 def shipped_models() -> Path:

@@ -13,7 +13,7 @@ from __future__ import annotations
 import ctypes
 import re
 from dataclasses import dataclass, field
-from typing import Dict, List, Optional, Tuple
+from typing import TYPE_CHECKING, Dict, List, Optional, Tuple
 
 import mujoco
 import numpy as np
@@ -23,6 +23,10 @@ from .limits import joint_command_problem, pose_problem, twist_problem
 from .sdf import SdfError, sdf_to_mjcf
 from .appearance import urdf_link_colours
 from .urdf import PluginSpec, UrdfError, inspect_urdf
+
+if TYPE_CHECKING:  # sensors are handed in by the plugins; the world only lends them its state
+    from .camera import BodyCamera
+    from .lidar import Lidar
 
 WORLD_FRAMES = ("", "world", "map")
 _NAME_RE = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_.\-]*$")
@@ -342,6 +346,23 @@ class World:
     # ---- queries ----------------------------------------------------------------------
     def _body_id(self, body: str) -> int:
         return mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_BODY, body)
+
+    def link_id(self, model: str, link: Optional[str]) -> int:
+        """Body id of link `link` (unscoped) of model `model`, -1 when there is none. Ids change
+        when a spawn or delete recompiles the world: ask again rather than keep one."""
+        return self._body_id("%s::%s" % (model, link))
+
+    @property
+    def gravity(self) -> np.ndarray:
+        return np.array(self.model.opt.gravity)
+
+    def scan(self, lidar: "Lidar", link: int) -> np.ndarray:
+        """One scan of `lidar` mounted on body `link` (an id from link_id)."""
+        return lidar.scan(self.model, self.data, link)
+
+    def render(self, camera: "BodyCamera", link: int) -> np.ndarray:
+        """One RGB image of `camera` mounted on body `link` (an id from link_id)."""
+        return camera.render(self.model, self.data, link)
 
     def body_pose(self, bid: int) -> Pose:
         self._refresh_kinematics()

@@ -1,6 +1,6 @@
 """gazebo_ros_diff_drive: cmd_vel -> wheel velocity servos (clamped to the robot's limits);
 odom (nav_msgs/Odometry), TF odom -> base frame, and the wheels' joint_states at updateRate.
-The maths is in engine/diffdrive.py (wheel speeds, wheel odometry)."""
+The maths is in engine/diffdrive.py (wheel speeds, wheel odometry) and engine/odometry.py."""
 from __future__ import annotations
 
 import math
@@ -14,10 +14,10 @@ from sensor_msgs.msg import JointState
 from tf2_msgs.msg import TFMessage
 
 from ..engine.diffdrive import DiffDriveGeometry, WheelOdometry, wheel_speeds
-from ..engine.frames import quat_conj, quat_from_rpy, rotate
+from ..engine.odometry import OdometryEstimate, from_encoders, from_ground_truth
 from ..engine.urdf import PluginSpec
 from ..engine.world import ModelEntry, World, WorldError
-from ..ros.conversions import stamp_from_sim
+from ..ros.conversions import pose_to_msg, stamp_from_sim
 from .base import Plugin, ns_join, param_float, register
 
 
@@ -78,36 +78,33 @@ class DiffDrivePlugin(Plugin):
         self.origin = world.models[self.model].spawn_pose
         self._stop(world)
 
+    def _estimate(self, world: World) -> OdometryEstimate:
+        if self.source == "encoder":
+            return from_encoders(self.odometry)
+        pose, twist = world.get_model_state(self.model)
+        return from_ground_truth(pose, twist, self.origin)
+
     def update(self, world: World, now: float) -> None:
         pos, vel, eff = world.joint_states(self.model, [self.left, self.right])
         dt = 0.0 if self._last_time is None else now - self._last_time
         self._last_time = now
         self.odometry.update(pos[0], pos[1], dt)
+        estimate = self._estimate(world)
         odom = Odometry()
         odom.header.stamp = stamp_from_sim(now)
         odom.header.frame_id = self.odom_frame
         odom.child_frame_id = self.base_frame
-        if self.source == "encoder":
-            x, y, z, q = self.odometry.x, self.odometry.y, 0.0, quat_from_rpy(0, 0, self.odometry.yaw)
-            v, w = self.odometry.linear, self.odometry.angular
-            odom.twist.twist.linear.x, odom.twist.twist.angular.z = v, w
-        else:  # ground truth relative to the spawn pose
-            pose, twist = world.get_model_state(self.model)
-            rel = pose.relative_to(self.origin)
-            (x, y, z), q = rel.position, rel.orientation
-            body_lin = rotate(quat_conj(pose.orientation), twist.linear)
-            body_ang = rotate(quat_conj(pose.orientation), twist.angular)
-            odom.twist.twist.linear.x, odom.twist.twist.linear.y = body_lin[0], body_lin[1]
-            odom.twist.twist.angular.z = body_ang[2]
-        odom.pose.pose.position.x, odom.pose.pose.position.y, odom.pose.pose.position.z = x, y, z
-        o = odom.pose.pose.orientation
-        o.w, o.x, o.y, o.z = (float(c) for c in q)
+        odom.pose.pose = pose_to_msg(estimate.pose)
+        twist = odom.twist.twist
+        twist.linear.x, twist.linear.y, twist.linear.z = (float(v) for v in estimate.linear)
+        twist.angular.x, twist.angular.y, twist.angular.z = (float(v) for v in estimate.angular)
         self.odom_pub.publish(odom)
         if self.publish_tf:
             tf = TransformStamped()
             tf.header = odom.header
             tf.child_frame_id = self.base_frame
-            tf.transform.translation.x, tf.transform.translation.y, tf.transform.translation.z = x, y, z
+            p = odom.pose.pose.position
+            tf.transform.translation.x, tf.transform.translation.y, tf.transform.translation.z = p.x, p.y, p.z
             tf.transform.rotation = odom.pose.pose.orientation
             self.tf_pub.publish(TFMessage([tf]))
         if self.publish_joints:

@@ -2,17 +2,28 @@
 """turtle_controller.py TURTLE_NAME: arrow keys drive /TURTLE_NAME/cmd_vel (Lab 2, section 4).
 
 One message per key press, like turtle_teleop_key (up/down: +-~linear_speed, left/right:
-+-~angular_speed, both 2.0); q quits. Run one controller per turtle, each in its own terminal.
-The keyboard handling (raw terminal, escape sequences) is shared with mybot_teleop.
++-~angular_speed, both 2.0); s stops the turtle, q stops it and quits. Run one controller
+per turtle, each in its own terminal. The keyboard (raw terminal, escape sequences, the
+arrows' map) is the course library course_keyboard.
 """
 import sys
+from typing import Optional, Tuple
 
 import rospy
 from geometry_msgs.msg import Twist
 
-from mybot_teleop_core.commands import TeleopCommands
-from mybot_teleop_core.keys import KeyDecoder
-from turtlesim.keyboard import NotATerminal, RawTerminal
+from course_keyboard.decoder import KeyDecoder
+from course_keyboard.drive import arrow_velocity
+from course_keyboard.terminal import NotATerminal, RawTerminal
+
+STOP_KEYS, QUIT_KEYS = ("s", "S"), ("q", "Q")
+
+
+def command_for(key: str, linear_speed: float, angular_speed: float) -> Optional[Tuple[float, float]]:
+    """(linear, angular) to publish for a key: an arrow's move, zero for s and q; None for other keys."""
+    if key in STOP_KEYS or key in QUIT_KEYS:
+        return 0.0, 0.0
+    return arrow_velocity(key, linear_speed, angular_speed)
 
 
 def main() -> int:
@@ -22,24 +33,26 @@ def main() -> int:
         return 2
     turtle = args[0]
     rospy.init_node("turtle_controller_" + turtle.strip("/").replace("/", "_"))
-    commands = TeleopCommands(float(rospy.get_param("~linear_speed", 2.0)),
-                              float(rospy.get_param("~angular_speed", 2.0)))
+    linear_speed = float(rospy.get_param("~linear_speed", 2.0))
+    angular_speed = float(rospy.get_param("~angular_speed", 2.0))
     pub = rospy.Publisher("/%s/cmd_vel" % turtle.strip("/"), Twist, queue_size=10)
     decoder = KeyDecoder()
     try:
         with RawTerminal(program="turtle_controller.py") as terminal:  # raw mode before the prompt
             print("Controlling %s: arrow keys move, q quits." % turtle, flush=True)
-            while not rospy.is_shutdown() and not commands.quit:
+            while not rospy.is_shutdown():
                 try:
                     data = terminal.read(0.1)
                 except EOFError:
                     break
                 for key in decoder.feed(data):
-                    velocity = commands.on_key(key)
-                    if velocity is not None:
+                    command = command_for(key, linear_speed, angular_speed)
+                    if command is not None:
                         twist = Twist()
-                        twist.linear.x, twist.angular.z = velocity.linear, velocity.angular
+                        twist.linear.x, twist.angular.z = command
                         pub.publish(twist)
+                    if key in QUIT_KEYS:
+                        return 0
     except NotATerminal as err:
         rospy.logfatal(str(err))
         return 1

@@ -11,9 +11,9 @@ import sys
 import rospy
 from geometry_msgs.msg import Twist
 
+from course_keyboard.terminal import NotATerminal, RawTerminal
 from mybot_teleop_core.commands import ON_KEY, TeleopCommands, Velocity
 from mybot_teleop_core.keys import KeyDecoder
-from turtlesim.keyboard import NotATerminal, RawTerminal
 
 
 def param_or_default(name, default):

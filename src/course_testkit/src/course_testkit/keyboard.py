@@ -1,5 +1,5 @@
 """Type on a node's keyboard: the node's stdin is the slave side of a pseudo-terminal
-and the test writes key presses (arrow escape sequences) to the master side.
+and the test writes key presses (arrow escape sequences: course_keyboard's table) to the master side.
 
 A node that puts the terminal in raw mode only while it waits for a key (tty.setraw, which
 flushes what was typed before) loses keys typed in between: with `raw_wait`, press() first
@@ -19,20 +19,20 @@ import subprocess
 import time
 from typing import Callable, Optional, Sequence, TypeVar
 
+from course_keyboard.arrows import SEQUENCES as ARROW_SEQUENCES
 from course_testkit.isolation import descendants
 from course_testkit.nodes import NodeProcess, find_executable
 from course_testkit.waiting import wait_for
 
 T = TypeVar("T")
 
-ARROWS = {"up": b"\x1b[A", "down": b"\x1b[B", "right": b"\x1b[C", "left": b"\x1b[D"}
 LINE_KILL = b"\x15"  # Ctrl+U: VKILL, erases the pending line in canonical mode
 ENTER = b"\n"
 
 
 def key_bytes(key: str, enter: bool = False) -> bytes:
     """The bytes a terminal sends for `key` (an arrow name or literal characters), as a line if `enter`."""
-    data = ARROWS.get(key, key.encode())
+    data = ARROW_SEQUENCES.get(key, key.encode())
     return LINE_KILL + data + ENTER if enter else data
 
 

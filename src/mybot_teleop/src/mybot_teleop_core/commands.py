@@ -9,7 +9,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Optional
 
-from mybot_teleop_core.keys import DOWN, LEFT, QUIT, RIGHT, STOP, UP
+from course_keyboard.drive import arrow_velocity
+from mybot_teleop_core.keys import QUIT, STOP
 
 ON_KEY, CONTINUOUS = "on_key", "continuous"
 MODES = (ON_KEY, CONTINUOUS)
@@ -35,10 +36,10 @@ class TeleopCommands:
 
     def velocity_for(self, key: str) -> Optional[Velocity]:
         """The velocity a key asks for, or None for keys that are not motion keys."""
-        table = {UP: Velocity(self.linear_scale, 0.0), DOWN: Velocity(-self.linear_scale, 0.0),
-                 LEFT: Velocity(0.0, self.angular_scale), RIGHT: Velocity(0.0, -self.angular_scale),
-                 STOP: Velocity()}
-        return table.get(key)
+        if key == STOP:
+            return Velocity()
+        arrow = arrow_velocity(key, self.linear_scale, self.angular_scale)
+        return None if arrow is None else Velocity(*arrow)
 
     def on_key(self, key: str) -> Optional[Velocity]:
         """Handle a key press; returns the velocity to publish now, if any."""

@@ -6,7 +6,7 @@ from __future__ import annotations
 import os
 import threading
 import time
-from typing import Dict, List
+from typing import Dict, List, Optional
 
 import mujoco
 import rospy
@@ -20,7 +20,7 @@ from std_srvs.srv import Empty, EmptyResponse
 from ..engine import database
 from ..engine.frames import Pose, twist_relative
 from ..engine.pacing import Pacer
-from ..engine.sdf import SdfError, parse_world
+from ..engine.sdf import SdfError, WorldFile
 from ..engine.world import World, WorldError
 from ..plugins import Plugin, make_plugins
 from .conversions import (pose_from_msg, pose_msg_problem, pose_to_msg, stamp_from_sim, twist_from_msg,
@@ -28,14 +28,13 @@ from .conversions import (pose_from_msg, pose_msg_problem, pose_to_msg, stamp_fr
 
 
 class GazeboServer:
-    def __init__(self, world_file: str = "", real_time_factor: float = 1.0, paused: bool = False,
+    def __init__(self, world_desc: Optional[WorldFile] = None, real_time_factor: float = 1.0, paused: bool = False,
                  states_rate: float = 100.0, steps_per_update: int = 5, gui: bool = False) -> None:
+        """`world_desc`: the parsed world file (physics settings and included models), if any."""
         # MuJoCo's warnings go to the node's log (not stdout and ./MUJOCO_LOG.TXT)
         mujoco.set_mju_user_warning(lambda text: rospy.logwarn_throttle(5.0, "MuJoCo: %s" % text.strip()))
         step, gravity = 0.001, (0.0, 0.0, -9.81)
-        world_desc = None
-        if world_file:
-            world_desc = parse_world(open(world_file).read())
+        if world_desc is not None:
             step = world_desc.max_step_size or step
             if world_desc.gravity is not None:
                 gravity = tuple(world_desc.gravity)
@@ -68,7 +67,7 @@ class GazeboServer:
         rospy.Service("~reset_world", Empty, self._reset_world)
         rospy.Service("~reset_simulation", Empty, self._reset_simulation)
 
-    def _load_world_models(self, desc) -> None:
+    def _load_world_models(self, desc: WorldFile) -> None:
         for inc in desc.includes:
             try:
                 sdf = inc.inline_sdf or database.resolve_uri(inc.uri)

@@ -3,22 +3,20 @@
 
 Publishes geometry_msgs/Twist (send time in linear.x, sequence in linear.y) through each
 relay at 100 Hz, 1 kHz and flat out, and prints delivered counts, throughput and latency
-p50/p99 side by side, with ours/topic_tools ratios. Starts its own roscore on a free port
-and stops everything it started. Run from a sourced workspace:
+p50/p99 side by side, with ours/topic_tools ratios. Starts its own master (no rosout) on a free
+loopback port and stops everything it started. Run from a sourced workspace:
     python3 bench/relay_bench.py [--seconds 5]
 """
 from __future__ import annotations
 
 import argparse
-import os
 import sys
-import tempfile
 import threading
 import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rosenv import free_port  # noqa: E402
+from rosenv import private_master  # noqa: E402
 
 from course_testkit.nodes import NodeProcess  # noqa: E402
 
@@ -93,16 +91,7 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--seconds", type=float, default=5.0, help="duration of the 100 Hz and 1 kHz runs")
     opts = parser.parse_args()
-    port = free_port()
-    env_home = tempfile.mkdtemp(prefix="relay-bench-")
-    os.environ.update(ROS_MASTER_URI="http://localhost:%d" % port, ROS_HOSTNAME="localhost",
-                      ROS_HOME=env_home, ROS_LOG_DIR=os.path.join(env_home, "log"))
-    master = NodeProcess(["rosmaster", "--core", "-p", str(port)])
-    try:
-        import rosgraph
-        deadline = time.time() + 20
-        while not rosgraph.is_master_online() and time.time() < deadline:
-            time.sleep(0.1)
+    with private_master(rosout=False):
         import rospy
         from geometry_msgs.msg import Twist
         from roslib.packages import find_node
@@ -122,8 +111,6 @@ def main() -> int:
             print("%-10s %-12s %8s %8s %10.2f %8.2f %8.2f" % (
                 "", "ratio o/t", "", "", ours["rate"] / ref["rate"], ours["p50"] / ref["p50"], ours["p99"] / ref["p99"]))
         rospy.signal_shutdown("done")
-    finally:
-        master.stop(10)
     return 0
 
 

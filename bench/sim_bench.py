@@ -2,10 +2,9 @@
 """Simulator benchmark (figures, no assertions). Run from a sourced workspace:
     python3 bench/sim_bench.py
 1. engine only (World + lidar, no ROS): max real-time factor for RRBot and for the Burger with a 5 Hz scan;
-2. the real node (roslaunch on a free port, headless): flat-out real-time factor with /scan subscribed,
+2. the real node (roslaunch on a private master, headless): flat-out real-time factor with /scan subscribed,
    CPU% of the gazebo process at real-time factor 1, /gazebo/model_states rate, spawn latency."""
 import json
-import os
 import subprocess
 import sys
 import time
@@ -14,7 +13,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rosenv import cpu_seconds, free_port  # noqa: E402
+from rosenv import cpu_seconds, private_master  # noqa: E402
 
 
 def engine_rtf(urdf: Path, lidar_body: str = "", seconds: float = 20.0) -> float:
@@ -70,21 +69,17 @@ def camera_render_ms(urdf: Path, frames: int = 30) -> str:
 
 
 def node_figures(rtf: str, measure_s: float = 10.0) -> dict:
-    port = free_port()
-    env = dict(os.environ, ROS_MASTER_URI="http://localhost:%d" % port, ROS_HOSTNAME="localhost")
-    env.pop("DISPLAY", None)
-    launch = subprocess.Popen(["roslaunch", "-p", str(port), "turtlebot3_gazebo", "turtlebot3_empty_world.launch",
-                               "gui:=false", "real_time_factor:=%s" % rtf], env=env,
-                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    os.environ.update(ROS_MASTER_URI=env["ROS_MASTER_URI"], ROS_HOSTNAME="localhost")
-    import rospy
-    from gazebo_msgs.msg import ModelStates
-    from gazebo_msgs.srv import DeleteModel, GetWorldProperties, SpawnModel
-    from geometry_msgs.msg import Pose
-    from rosgraph_msgs.msg import Clock
-    from sensor_msgs.msg import LaserScan
-    out = {}
-    try:
+    with private_master() as ros:
+        headless = {name: value for name, value in ros.env.items() if name != "DISPLAY"}
+        ros.start(["roslaunch", "turtlebot3_gazebo", "turtlebot3_empty_world.launch", "gui:=false",
+                   "real_time_factor:=%s" % rtf], "gazebo", env=headless)
+        import rospy
+        from gazebo_msgs.msg import ModelStates
+        from gazebo_msgs.srv import DeleteModel, GetWorldProperties, SpawnModel
+        from geometry_msgs.msg import Pose
+        from rosgraph_msgs.msg import Clock
+        from sensor_msgs.msg import LaserScan
+        out = {}
         if not rospy.core.is_initialized():
             rospy.init_node("sim_bench", anonymous=True, disable_signals=True)
         rospy.wait_for_service("/gazebo/get_world_properties", 60)
@@ -115,9 +110,6 @@ def node_figures(rtf: str, measure_s: float = 10.0) -> dict:
         for i in range(10):
             delete("can%d" % i)
         out["spawn_ms"] = 1000 * sorted(lat)[len(lat) // 2]
-    finally:
-        launch.terminate()
-        launch.wait(30)
     return out
 
 

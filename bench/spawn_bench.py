@@ -21,9 +21,9 @@ def rss_mb(pid: int) -> float:
 def main() -> None:
     rounds = int(sys.argv[1]) if len(sys.argv) > 1 else 12
     cans = int(sys.argv[2]) if len(sys.argv) > 2 else 200
-    with private_master() as procs:
-        procs.start(["roslaunch", "gazebo_ros", "empty_world.launch", "gui:=false", "headless:=true",
-                     "real_time_factor:=0"], "gazebo")
+    with private_master() as ros:
+        ros.start(["roslaunch", "gazebo_ros", "empty_world.launch", "gui:=false", "headless:=true",
+                   "real_time_factor:=0"], "gazebo")
         import rosgraph
         import rospy
         from gazebo_msgs.srv import DeleteModel, SpawnModel

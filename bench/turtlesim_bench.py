@@ -49,9 +49,9 @@ def run(n: int, subscribe: bool) -> dict:
     from turtlesim.msg import Pose
     from turtlesim.srv import SetPen, Spawn
 
-    with private_master() as procs:
+    with private_master() as ros:
         rospy.init_node("turtlesim_bench", anonymous=True, disable_signals=True)
-        sim = procs.start(["rosrun", "turtlesim", "turtlesim_node"], "turtlesim")
+        sim = ros.start(["rosrun", "turtlesim", "turtlesim_node"], "turtlesim")
         rospy.wait_for_service("/spawn", 30)
         names = ["turtle1"]
         spawn = rospy.ServiceProxy("/spawn", Spawn)
@@ -131,26 +131,25 @@ def startup_runs(runs: int) -> dict:
     from turtlesim.srv import Spawn
 
     times = {path: {"available": [], "answered": []} for path in LAUNCH_PATHS}
-    with private_master() as procs:
+    with private_master() as ros:
         rospy.init_node("turtlesim_startup_bench", anonymous=True, disable_signals=True)
         caller_id = rospy.get_name()
         master = ServerProxy(os.environ["ROS_MASTER_URI"])
-        commands = {path: launch_command(path, procs.scratch) for path in LAUNCH_PATHS}
+        commands = {path: launch_command(path, ros.home) for path in LAUNCH_PATHS}
         for run_index in range(runs):
             for path in LAUNCH_PATHS:
                 launched = time.monotonic()
-                sim = procs.start(commands[path], "%s-%d" % (path, run_index))
+                sim = ros.start(commands[path], "%s-%d" % (path, run_index))
                 while not spawn_probe(master, caller_id):
                     if time.monotonic() - launched > 30 or not sim.running():
-                        raise RuntimeError("%s: /spawn never came up (see %s)" % (path, procs.scratch))
+                        raise RuntimeError("%s: /spawn never came up (see %s)" % (path, ros.home))
                     time.sleep(STARTUP_POLL_S)
                 available = time.monotonic() - launched
                 rospy.ServiceProxy("/spawn", Spawn)(1.0, 1.0, 0.0, "")
                 answered = time.monotonic() - launched
                 times[path]["available"].append(available)
                 times[path]["answered"].append(answered)
-                sim.stop()
-                procs.procs.remove(sim)
+                ros.stop_node(sim)
                 deadline = time.monotonic() + 10  # the next run must not find this one's /spawn
                 while spawn_probe(master, caller_id) and time.monotonic() < deadline:
                     time.sleep(STARTUP_POLL_S)

@@ -1,7 +1,8 @@
 """The command-line steps of the course texts, verbatim, against a live turtlesim.
 
 Each row is a command a text tells students to type (001 2.1-2.2, 002 2-3, 003 Part I,
-000) and a piece of what it must print. A private roscore on a free loopback port.
+000) and a piece of what it must print. A private roscore (course_testkit.master) on a free
+loopback port.
 """
 from __future__ import annotations
 
@@ -48,29 +49,18 @@ COMMANDS = [
 @pytest.fixture(scope="module")
 def ros_env(tmp_path_factory):
     """A roscore and a turtlesim_node of our own; both stopped (with their children) afterwards."""
-    from course_testkit.isolation import free_port
-    from course_testkit.nodes import NodeProcess
+    from course_testkit.master import PrivateMaster
     from course_testkit.waiting import wait_for
 
-    home = tmp_path_factory.mktemp("ros_home")
-    port = free_port()
-    env = dict(os.environ, ROS_MASTER_URI="http://localhost:%d" % port, ROS_HOSTNAME="localhost",
-               ROS_HOME=str(home), ROS_LOG_DIR=str(home / "log"), QT_QPA_PLATFORM="offscreen")
-    env.pop("ROS_IP", None)
+    env = dict(os.environ, QT_QPA_PLATFORM="offscreen")
+    with PrivateMaster(rosout=True, home=tmp_path_factory.mktemp("ros_home"), env=env) as master:
+        def services() -> str:
+            proc = subprocess.run(["rosservice", "list"], env=master.env, capture_output=True, text=True)
+            return proc.stdout if proc.returncode == 0 else ""
 
-    def succeeds(*argv: str) -> str:
-        proc = subprocess.run(argv, env=env, capture_output=True, text=True)
-        return proc.stdout if proc.returncode == 0 else ""
-
-    procs = [NodeProcess(["roscore", "-p", str(port)], env=env)]
-    try:
-        assert wait_for(lambda: succeeds("rosnode", "list"), 30), "roscore did not start"
-        procs.append(NodeProcess(["rosrun", "turtlesim", "turtlesim_node"], env=env))
-        assert wait_for(lambda: "/spawn" in succeeds("rosservice", "list"), 30), "turtlesim did not start"
-        yield env
-    finally:
-        for proc in reversed(procs):
-            proc.stop(15)
+        master.start(["rosrun", "turtlesim", "turtlesim_node"], "turtlesim")
+        assert wait_for(lambda: "/spawn" in services(), 30), "turtlesim did not start"
+        yield master.env
 
 
 @pytest.mark.parametrize("command, expected", COMMANDS, ids=[c for c, _ in COMMANDS])

@@ -12,27 +12,20 @@ Debian's rosout, a roscpp node, always binds its XML-RPC server to 0.0.0.0 (xmlr
 INADDR_ANY, whatever ROS_HOSTNAME or ROS_IP say). So the demo starts `rosmaster --core`
 itself instead of `roscore` (= master + rosout): nodes still publish /rosout, nobody
 aggregates it into /rosout_agg. The master's port is the kernel's pick, not 11311, so no
-client left with the default ROS_MASTER_URI on this machine can reach into the demo.
+client left with the default ROS_MASTER_URI on this machine can reach into the demo
+(course_testkit.master.PrivateMaster, the one private master of the workspace).
 """
 from __future__ import annotations
 
 import argparse
-import os
 import shutil
 import sys
-import tempfile
 import time
 from pathlib import Path
 from typing import Sequence
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENE_SECONDS = 8.0
-STARTUP_TIMEOUT_S = 30.0
-
-
-def master_online() -> bool:
-    import rosgraph
-    return rosgraph.Master("/demo").is_online()
 
 
 def scene(out_dir: Path, seconds: float = SCENE_SECONDS) -> str:
@@ -100,34 +93,20 @@ def parse_args(argv: Sequence[str]) -> argparse.Namespace:
 def main(argv: Sequence[str]) -> int:
     args = parse_args(argv)
     args.out.mkdir(parents=True, exist_ok=True)
-    from course_testkit.isolation import free_port
-    from course_testkit.nodes import NodeProcess  # each in its own process group, stopped with it
-    from course_testkit.waiting import wait_for
+    from course_testkit.master import PrivateMaster  # rosmaster --core alone: loopback only
 
-    port = free_port()
-    scratch = Path(tempfile.mkdtemp(prefix="turtle-demo-"))
-    os.environ.update(ROS_MASTER_URI="http://localhost:%d" % port, ROS_HOSTNAME="localhost",
-                      ROS_HOME=str(scratch), ROS_LOG_DIR=str(scratch / "log"))
-    os.environ.pop("ROS_IP", None)
-    print("demo: private master at %s (loopback only)" % os.environ["ROS_MASTER_URI"], flush=True)
-    procs = []
+    master = PrivateMaster()
+    master.export()
+    print("demo: private master at %s (loopback only)" % master.uri, flush=True)
     try:
-        procs.append(NodeProcess(["rosmaster", "--core", "-p", str(port), "__log:=%s" % (scratch / "master.log")],
-                                 log_path=str(scratch / "rosmaster.out")))
-        if not wait_for(master_online, timeout=STARTUP_TIMEOUT_S, interval=0.1):
-            raise RuntimeError("the master did not come up")
-        procs.append(NodeProcess(["rosrun", "turtlesim", "turtlesim_node",
-                                  "_snapshot_dir:=%s" % (scratch / "snapshots")],
-                                 log_path=str(scratch / "turtlesim.log")))
-        summary = scene(args.out, args.seconds)
-    except Exception as err:  # report, then still clean up
-        print("demo failed: %s (logs in %s)" % (err, scratch), file=sys.stderr)
+        with master:
+            master.start(["rosrun", "turtlesim", "turtlesim_node", "_snapshot_dir:=%s" % (master.home / "snapshots")],
+                         "turtlesim")
+            summary = scene(args.out, args.seconds)
+    except Exception as err:  # report; the master has stopped everything and kept its logs
+        print("demo failed: %s (logs in %s)" % (err, master.home), file=sys.stderr)
         return 1
-    finally:
-        for proc in reversed(procs):
-            proc.stop()
     print(summary)
-    shutil.rmtree(scratch, ignore_errors=True)
     return 0
 
 

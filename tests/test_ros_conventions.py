@@ -10,14 +10,13 @@ No master is needed: these read files, as the tools do.
 """
 from __future__ import annotations
 
-import ast
 import os
 import subprocess
-import sys
-import xml.etree.ElementTree as ET
-from typing import Dict, Iterator, List, Set, Tuple
+from typing import List
 
 import pytest
+
+from course_testkit import package_scan as scan
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SRC = os.path.join(ROOT, "src")
@@ -42,71 +41,6 @@ ROS_MODULES = {"rospy", "rosgraph", "roslib", "roslaunch", "rostest", "rosnode",
                "topic_tools", "rosunit", "message_filters"}
 
 
-def packages() -> Dict[str, str]:
-    """name -> folder of every package under src/."""
-    found = {}
-    for entry in sorted(os.listdir(SRC)):
-        manifest = os.path.join(SRC, entry, "package.xml")
-        if os.path.isfile(manifest):
-            found[ET.parse(manifest).getroot().findtext("name")] = os.path.join(SRC, entry)
-    return found
-
-
-def declared(folder: str) -> Tuple[Set[str], Set[str]]:
-    """(run dependencies, every dependency) of a package.xml (format 2)."""
-    run_tags = {"depend", "exec_depend", "run_depend"}
-    run, every = set(), set()
-    for element in ET.parse(os.path.join(folder, "package.xml")).getroot():
-        if element.tag.endswith("depend") and element.text:
-            every.add(element.text.strip())
-            if element.tag in run_tags:
-                run.add(element.text.strip())
-    return run, every
-
-
-def python_modules_of(pkgs: Dict[str, str]) -> Dict[str, str]:
-    """importable module -> the package that provides it: message packages under their own
-    name, and each package's src/<module>/ (catkin_python_setup)."""
-    modules = {name: name for name in pkgs}
-    for name, folder in pkgs.items():
-        src = os.path.join(folder, "src")
-        if os.path.isdir(src):
-            for entry in os.listdir(src):
-                if os.path.isfile(os.path.join(src, entry, "__init__.py")):
-                    modules[entry] = name
-    return modules
-
-
-def python_files(folder: str) -> Iterator[Tuple[str, bool]]:
-    """(path, is test code) of every Python file and #!python script of a package."""
-    for root, dirs, files in os.walk(folder):
-        dirs[:] = [d for d in dirs if d != "__pycache__"]
-        for name in files:
-            path = os.path.join(root, name)
-            if name == "setup.py" and root == folder:
-                continue  # catkin's own build step
-            if not name.endswith(".py"):
-                with open(path, "rb") as f:
-                    first = f.readline()
-                if not (first.startswith(b"#!") and b"python" in first):
-                    continue
-            rel = os.path.relpath(path, folder)
-            yield path, rel.split(os.sep)[0] == "test"
-
-
-def imports(path: str) -> Set[str]:
-    """Top-level names of the absolute imports in one file."""
-    with open(path, encoding="utf-8") as f:
-        tree = ast.parse(f.read(), path)
-    names = set()
-    for node in ast.walk(tree):
-        if isinstance(node, ast.Import):
-            names.update(alias.name.split(".")[0] for alias in node.names)
-        elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
-            names.add(node.module.split(".")[0])
-    return names - set(sys.stdlib_module_names)
-
-
 def test_catkin_lint_finds_nothing():
     if not os.access(CATKIN_LINT, os.X_OK):
         pytest.fail("catkin_lint is missing from the venv: run `make deps` (requirements.txt lists it)")
@@ -128,17 +62,17 @@ def test_roslaunch_check_passes(launch):
     assert error is None, "roslaunch-check %s: %s" % (os.path.relpath(launch, SRC), error)
 
 
-def undeclared_imports() -> List[str]:
-    pkgs = packages()
-    providers = python_modules_of(pkgs)
+def undeclared_imports(src: str = SRC) -> List[str]:
+    pkgs = scan.packages(src)
+    providers = scan.python_modules_of(pkgs)
     problems = []
     for name, folder in pkgs.items():
-        run, every = declared(folder)
-        for path, is_test in python_files(folder):
-            for module in sorted(imports(path)):
+        run, every = scan.declared(folder)
+        for path, is_test in scan.python_files(folder):
+            for module in sorted({dotted.split(".")[0] for dotted in scan.imports(path)}):
                 key = providers.get(module) or ROSDEP_KEYS.get(module) \
                     or (module if module in ROS_MODULES or module.endswith(("_msgs", "_srvs")) else None)
-                rel = os.path.relpath(path, SRC)
+                rel = os.path.relpath(path, src)
                 if key is None:
                     if not is_test:
                         problems.append("%s imports %s, which no package or rosdep key in this "
@@ -155,7 +89,7 @@ def test_every_import_is_declared():
     assert not problems, "\n".join(problems)
 
 
-def test_the_import_check_sees_a_missing_dependency(tmp_path, monkeypatch):
+def test_the_import_check_sees_a_missing_dependency(tmp_path):
     """The check above could pass by reading nothing: a package importing numpy without
     declaring it must be reported."""
     pkg = tmp_path / "src" / "lonely"
@@ -163,8 +97,7 @@ def test_the_import_check_sees_a_missing_dependency(tmp_path, monkeypatch):
     (pkg / "package.xml").write_text('<package format="2"><name>lonely</name>'
                                      '<exec_depend>rospy</exec_depend></package>')
     (pkg / "nodes" / "talk").write_text("#!/usr/bin/env python3\nimport rospy\nimport numpy\n")
-    monkeypatch.setattr(sys.modules[__name__], "SRC", str(tmp_path / "src"))
-    assert undeclared_imports() == [
+    assert undeclared_imports(str(tmp_path / "src")) == [
         "lonely/nodes/talk imports numpy: package.xml lacks <exec_depend>python3-numpy</exec_depend>"]
 
 
@@ -172,7 +105,7 @@ def test_every_rostest_is_registered():
     """`catkin_make run_tests` runs a package's test/*.test only if its CMakeLists names it; an
     explicit add_rostest line (no file(GLOB), which misses a new file until CMake reruns)."""
     missing = []
-    for name, folder in packages().items():
+    for name, folder in scan.packages(SRC).items():
         test_dir = os.path.join(folder, "test")
         if not os.path.isdir(test_dir):
             continue

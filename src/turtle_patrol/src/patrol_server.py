@@ -16,11 +16,15 @@ from typing import Optional
 
 import rospy
 from geometry_msgs.msg import Twist
-from turtlesim.constants import TICK, WORLD_SIZE
 from turtlesim.srv import TeleportAbsolute
 
 from turtle_patrol.srv import Patrol, PatrolResponse
 
+# Upstream turtlesim's canvas (500 px at 45 px/m) and tick (62.5 Hz). The patrol runs against any
+# turtlesim, upstream's included, which ships no Python module to import them from; the unit
+# tests check they equal our simulator's turtlesim.constants.
+WORLD_SIZE = 499.0 / 45.0
+TICK = 0.016
 MAX_VEL = WORLD_SIZE / TICK
 """m/s: faster, one turtlesim tick would cross the whole canvas (693 m/s)."""
 MAX_OMEGA = math.pi / TICK

@@ -32,6 +32,7 @@ def test_huge_speeds_are_refused_with_the_limit(server, vel, omega):
 
 
 def test_limits_come_from_turtlesims_tick(server):
+    assert (server.WORLD_SIZE, server.TICK) == (pytest.approx(WORLD_SIZE), TICK)
     assert server.MAX_VEL == pytest.approx(WORLD_SIZE / TICK)
     assert server.MAX_OMEGA == pytest.approx(math.pi / TICK)
     assert server.request_error(server.MAX_VEL, -server.MAX_OMEGA, 1.0, 1.0, 0.0) is None

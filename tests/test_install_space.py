@@ -8,7 +8,8 @@ first `python3` cannot import rospy, sources only install/setup.bash. Then:
 - `rosrun turtlesim turtlesim_node` publishes the turtle's pose;
 - `roslaunch rrbot_gazebo rrbot_world.launch` runs the MuJoCo simulator from the install space:
   the world file and the RRBot come from share/, and a coke can spawns from the model database.
-Every process carries a run token and is killed at the end, whatever happens.
+The master is course_testkit's private one, started from the install space's environment: it
+stops every process of the test at the end, whatever happens.
 """
 from __future__ import annotations
 
@@ -19,7 +20,8 @@ from typing import Dict, List
 
 import pytest
 
-from course_testkit.isolation import free_port, kill_run, new_token, pids_with_token, token_env
+from course_testkit.isolation import pids_with_token
+from course_testkit.master import PrivateMaster
 from course_testkit.waiting import wait_for
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -55,9 +57,7 @@ def install_env(install_space, tmp_path_factory) -> Dict[str, str]:
     out = subprocess.run(["bash", "-c", 'source "$1/setup.bash" && env -0', "bash", str(install_space)],
                          env=start, stdout=subprocess.PIPE, check=True).stdout
     env = dict(item.split("=", 1) for item in out.decode().split("\0") if "=" in item)
-    port = free_port()
-    env.update(ROS_MASTER_URI="http://127.0.0.1:%d" % port, ROS_HOSTNAME="127.0.0.1",
-               ROS_IP="127.0.0.1", QT_QPA_PLATFORM="offscreen", PYTHONUNBUFFERED="1")
+    env.update(QT_QPA_PLATFORM="offscreen", PYTHONUNBUFFERED="1")
     return env
 
 
@@ -84,16 +84,6 @@ def test_shell_tools_work(install_space, install_env):
     assert Path(install_env["ROS_ROOT"]).is_dir(), install_env.get("ROS_ROOT")
 
 
-STARTED: List[subprocess.Popen] = []
-
-
-def background(env: Dict[str, str], log: Path, *command: str) -> subprocess.Popen:
-    process = subprocess.Popen(list(command), env=env, stdout=log.open("w"), stderr=subprocess.STDOUT,
-                               start_new_session=True)
-    STARTED.append(process)
-    return process
-
-
 def command_line(pid: int) -> str:
     try:
         with open("/proc/%d/cmdline" % pid, "rb") as f:
@@ -109,23 +99,19 @@ def answers(env: Dict[str, str], command: List[str], expected: str) -> bool:
         return False
 
 
-def test_nodes_and_the_simulator_run_from_the_install_space(install_space, install_env, tmp_path):
-    token = new_token()
-    env = token_env(install_env, token)
-    port = env["ROS_MASTER_URI"].rsplit(":", 1)[1]
-    try:
-        background(env, tmp_path / "master.log", "rosmaster", "--core", "-p", port)
-        background(env, tmp_path / "turtlesim.log", "rosrun", "turtlesim", "turtlesim_node")
+def test_nodes_and_the_simulator_run_from_the_install_space(install_space, install_env):
+    with PrivateMaster(env=install_env, timeout=START_TIMEOUT_S) as master:
+        env = master.env
+        turtlesim = master.start(["rosrun", "turtlesim", "turtlesim_node"], "turtlesim")
         pose = run(env, "rostopic", "echo", "-n1", "/turtle1/pose", timeout=START_TIMEOUT_S)
-        assert "x: 5.544" in pose.stdout, pose.stdout + (tmp_path / "turtlesim.log").read_text()
+        assert "x: 5.544" in pose.stdout, pose.stdout + turtlesim.output()
 
-        world = background(env, tmp_path / "rrbot.log", "roslaunch", "rrbot_gazebo", "rrbot_world.launch", "gui:=false")
+        world = master.start(["roslaunch", "rrbot_gazebo", "rrbot_world.launch", "gui:=false"], "rrbot")
         get_rrbot = ["rosservice", "call", "/gazebo/get_model_state", "rrbot", ""]
-        wait_for(lambda: answers(env, get_rrbot, "success: True") or world.poll() is not None,
+        wait_for(lambda: answers(env, get_rrbot, "success: True") or not world.running(),
                  timeout=START_TIMEOUT_S, interval=0.5)
-        log = (tmp_path / "rrbot.log").read_text()
-        assert world.poll() is None, "rrbot_world.launch ended:\n" + log[-3000:]
-        servers = [command_line(pid) for pid in pids_with_token(token)
+        assert world.running(), "rrbot_world.launch ended:\n" + world.output()[-3000:]
+        servers = [command_line(pid) for pid in pids_with_token(master.token)
                    if "mujoco_gazebo/gzserver" in command_line(pid)]
         assert servers and all(str(install_space / "lib" / "mujoco_gazebo" / "gzserver") in c
                                for c in servers), servers
@@ -134,7 +120,3 @@ def test_nodes_and_the_simulator_run_from_the_install_space(install_space, insta
                     "-model", "coke_can", "-x", "1", timeout=START_TIMEOUT_S)
         assert spawn.returncode == 0, spawn.stdout
         assert answers(env, ["rosservice", "call", "/gazebo/get_model_state", "coke_can", ""], "success: True")
-    finally:
-        kill_run(token)
-        for process in STARTED:
-            process.wait(10)

@@ -99,7 +99,7 @@ def parse_args(argv: List[str]) -> SpawnArgs:
 
 
 def load_xml(args: SpawnArgs, get_param=None, stdin=None) -> str:
-    """The model text from the chosen source (database models come from mujoco_gazebo.database)."""
+    """The model text from the chosen source (database models come from mujoco_gazebo.engine.database)."""
     if args.source == "file":
         try:
             with open(args.source_value) as f:

@@ -34,6 +34,8 @@ ROSDEP_KEYS = {
     "rospkg": "python3-rospkg",
     "catkin_pkg": "python3-catkin-pkg",
     "selenium": "python3-selenium",
+    "tornado": "python3-tornado",
+    "PIL": "python3-pil",
 }
 # ROS packages whose Python module has the package's name (Debian's ROS, or ours).
 ROS_MODULES = {"rospy", "rosgraph", "roslib", "roslaunch", "rostest", "rosnode", "rosservice",

@@ -1,0 +1,206 @@
+"""The ROS side of the bridge: shared publishers and subscribers, service calls, type checks.
+
+However many clients watch a topic, the node holds one rospy.Subscriber for it and turns each
+message into its publish frame (or compressed picture) once, then hands the same payload to
+every client's outbox: the ROS callback never waits for a client. Publishers are shared the
+same way. Service calls run on a small thread pool, so a slow service delays only its caller's
+reply. Types come from the request, or from the master when the request leaves them out, and a
+request that contradicts the master (another type on the same topic) is refused, because rospy
+would otherwise connect nothing and say nothing.
+"""
+from __future__ import annotations
+
+import concurrent.futures
+import threading
+from typing import Any, Dict, Hashable, Optional, Set, Tuple, Type
+
+import genpy
+import rosgraph
+import rospy
+import rosservice
+
+from course_web import frames
+from course_web.convert import ConversionError, json_to_message, message_class, message_to_json, service_class
+from course_web.protocol import Bridge, Deliver, RequestError, ServiceDone, publish_frame
+
+IMAGE_TYPE = "sensor_msgs/Image"
+CALLER_ID = "/course_web"
+SERVICE_WORKERS = 8
+SUBSCRIBER_QUEUE = 10
+
+
+def required_class(type_name: str) -> Type[genpy.Message]:
+    cls = message_class(type_name) if "/" in type_name else None
+    if cls is None:
+        raise RequestError("unknown message type %r" % type_name)
+    return cls
+
+
+class _Publisher:
+    def __init__(self, type_name: str, cls: Type[genpy.Message], publisher: rospy.Publisher) -> None:
+        self.type_name, self.cls, self.publisher = type_name, cls, publisher
+        self.clients: Set[Hashable] = set()
+
+
+class _Feed:
+    """One topic's rospy.Subscriber and the clients it feeds."""
+
+    def __init__(self, topic: str, type_name: str, cls: Type[genpy.Message]) -> None:
+        self.topic, self.type_name = topic, type_name
+        self.lock = threading.Lock()
+        self.readers: Dict[Hashable, Tuple[Optional[str], Deliver]] = {}
+        self.subscriber = rospy.Subscriber(topic, cls, self.on_message, queue_size=SUBSCRIBER_QUEUE)
+
+    def on_message(self, msg: genpy.Message) -> None:
+        with self.lock:
+            readers = list(self.readers.values())
+        encoded: Dict[Optional[str], Any] = {}
+        for compression, deliver in readers:
+            if compression not in encoded:
+                try:
+                    encoded[compression] = self.encode(msg, compression)
+                except (ValueError, TypeError) as err:
+                    rospy.logwarn_throttle(5.0, "lab_view: %s: cannot send a message: %s" % (self.topic, err))
+                    encoded[compression] = None
+            if encoded[compression] is not None:
+                deliver(encoded[compression])
+
+    def encode(self, msg: genpy.Message, compression: Optional[str]):
+        if compression is None:
+            return publish_frame(self.topic, message_to_json(msg))
+        stamp = {"secs": msg.header.stamp.secs, "nsecs": msg.header.stamp.nsecs}
+        return frames.image_frame(self.topic, compression, msg.encoding, msg.width, msg.height, msg.step,
+                                  msg.data, stamp)
+
+
+class RosBridge(Bridge):
+    """The Bridge of course_web.protocol, wired to rospy (the node must be initialised)."""
+
+    def __init__(self, workers: int = SERVICE_WORKERS) -> None:
+        self.lock = threading.Lock()
+        self.publishers: Dict[str, _Publisher] = {}
+        self.feeds: Dict[str, _Feed] = {}
+        self.calls = concurrent.futures.ThreadPoolExecutor(workers, thread_name_prefix="lab_view-call")
+
+    def topic_type(self, topic: str) -> Optional[str]:
+        """The topic's type as the master knows it (None: nobody publishes or subscribes it)."""
+        try:  # a Master per call: its xmlrpc proxy must not be shared between threads
+            return dict(rosgraph.Master(CALLER_ID).getTopicTypes()).get(topic)
+        except (rosgraph.MasterException, OSError) as err:
+            raise RequestError("the ROS master does not answer: %s" % err)
+
+    def _checked_type(self, topic: str, type_name: Optional[str]) -> str:
+        known = self.topic_type(topic)
+        if not type_name:
+            if known is None:
+                raise RequestError("unknown topic %s: no node publishes it and no type was given" % topic)
+            return known
+        if known is not None and known != type_name:
+            raise RequestError("type mismatch: %s has type %s, not %s" % (topic, known, type_name))
+        return type_name
+
+    # -- topics out -----------------------------------------------------------------------
+    def advertise(self, client: Hashable, topic: str, type_name: str, latch: bool, queue_size: int) -> None:
+        with self.lock:
+            current = self.publishers.get(topic)
+            if current is not None:
+                if type_name and type_name != current.type_name:
+                    raise RequestError("type mismatch: %s is advertised as %s, not %s" % (topic, current.type_name, type_name))
+                current.clients.add(client)
+                return
+        type_name = self._checked_type(topic, type_name)
+        cls = required_class(type_name)
+        with self.lock:
+            current = self.publishers.get(topic)
+            if current is None:
+                publisher = rospy.Publisher(topic, cls, queue_size=min(max(queue_size, 1), 1000), latch=latch)
+                current = self.publishers[topic] = _Publisher(type_name, cls, publisher)
+            current.clients.add(client)
+
+    def unadvertise(self, client: Hashable, topic: str) -> None:
+        with self.lock:
+            current = self.publishers.get(topic)
+            if current is None:
+                return
+            current.clients.discard(client)
+            if current.clients:
+                return
+            del self.publishers[topic]
+        current.publisher.unregister()
+
+    def publish(self, client: Hashable, topic: str, msg: Any) -> None:
+        with self.lock:
+            current = self.publishers.get(topic)
+        if current is None:
+            raise RequestError("%s is not advertised" % topic)
+        try:
+            message = json_to_message(msg, current.cls, message_class)
+        except ConversionError as err:
+            raise RequestError("%s (%s): %s" % (topic, current.type_name, err))
+        current.publisher.publish(message)
+
+    # -- topics in ------------------------------------------------------------------------
+    def subscribe(self, client: Hashable, key: Hashable, topic: str, type_name: Optional[str],
+                  compression: Optional[str], deliver: Deliver) -> str:
+        with self.lock:
+            feed = self.feeds.get(topic)
+        if feed is None:
+            type_name = self._checked_type(topic, type_name)
+        elif type_name and type_name != feed.type_name:
+            raise RequestError("type mismatch: %s has type %s, not %s" % (topic, feed.type_name, type_name))
+        else:
+            type_name = feed.type_name
+        if compression is not None and type_name != IMAGE_TYPE:
+            raise RequestError("compression %s is for %s topics; %s is %s" % (compression, IMAGE_TYPE, topic, type_name))
+        cls = required_class(type_name)
+        with self.lock:
+            feed = self.feeds.get(topic)
+            if feed is None:
+                feed = self.feeds[topic] = _Feed(topic, type_name, cls)
+            with feed.lock:
+                feed.readers[key] = (compression, deliver)
+        return type_name
+
+    def unsubscribe(self, client: Hashable, key: Hashable) -> None:
+        with self.lock:
+            for topic, feed in list(self.feeds.items()):
+                with feed.lock:
+                    if feed.readers.pop(key, None) is None or feed.readers:
+                        continue
+                del self.feeds[topic]
+                feed.subscriber.unregister()
+
+    # -- services -------------------------------------------------------------------------
+    def call_service(self, service: str, type_name: Optional[str], args: Any, done: ServiceDone) -> None:
+        self.calls.submit(self._call, service, type_name, args, done)
+
+    def _call(self, service: str, type_name: Optional[str], args: Any, done: ServiceDone) -> None:
+        try:
+            values = self._call_values(service, type_name, args)
+        except (RequestError, ConversionError, rospy.ServiceException, rosservice.ROSServiceException,
+                rospy.ROSException, OSError) as err:
+            done(False, str(err))
+        except Exception as err:  # noqa: BLE001 - a reply is owed whatever went wrong
+            done(False, "%s: %r" % (service, err))
+        else:
+            done(True, values)
+
+    def _call_values(self, service: str, type_name: Optional[str], args: Any) -> Dict[str, Any]:
+        if not type_name:
+            type_name = rosservice.get_service_type(service)
+            if not type_name:
+                raise RequestError("unknown service %s" % service)
+        cls = service_class(type_name)
+        if cls is None:
+            raise RequestError("unknown service type %r" % type_name)
+        request_cls = cls._request_class
+        if isinstance(args, list):
+            if len(args) > len(request_cls.__slots__):
+                raise RequestError("%s takes %d arguments, got %d" % (type_name, len(request_cls.__slots__), len(args)))
+            args = dict(zip(request_cls.__slots__, args))
+        request = json_to_message(args, request_cls, message_class)
+        response = rospy.ServiceProxy(service, cls)(request)
+        return message_to_json(response)
+
+    def shutdown(self) -> None:
+        self.calls.shutdown(wait=False)

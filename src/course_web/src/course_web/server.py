@@ -1,0 +1,156 @@
+"""The HTTP and websocket server: the page's files and one rosbridge v2 session per socket.
+
+Tornado (Debian's python3-tornado, rosbridge_server's own choice) runs everything network-side
+on one asyncio loop. Each socket has a sender task that takes due messages from its Outbox and
+awaits each write, so a client that reads slowly only fills (and drops from) its own bounded
+queues; the ROS callbacks just append and wake the sender. Requests are handled in a thread
+pool, one at a time per socket (tornado awaits on_message), because advertise and subscribe talk
+to the master and must not stall the loop. The websocket answers at "/" (where roslibpy and
+roslibjs connect, like rosbridge on its port) and at "/websocket"; a plain GET of "/" is the page.
+"""
+from __future__ import annotations
+
+import concurrent.futures
+import datetime
+import itertools
+import os
+import time
+from typing import Optional
+
+import tornado.locks
+import tornado.util
+import tornado.web
+import tornado.websocket
+from tornado.ioloop import IOLoop
+
+from course_web import access
+from course_web.outbox import Outbox
+from course_web.protocol import DEFAULT_MAX_MESSAGE_BYTES, Bridge, Session
+
+TOKEN_COOKIE = "course_web_token"
+REQUEST_WORKERS = 8
+PING_INTERVAL_S = 20.0
+TOKEN_REFUSAL = "a valid token is required: open the URL the lab_view server printed (it ends in ?token=...)"
+POLICY_VIOLATION = 1008
+
+
+class Settings:
+    """What the handlers share: the bridge, the token, the limits, the page's folder."""
+
+    def __init__(self, bridge: Bridge, www: str, token: Optional[str] = None,
+                 max_message_bytes: int = DEFAULT_MAX_MESSAGE_BYTES) -> None:
+        self.bridge, self.www, self.token, self.max_message_bytes = bridge, www, token, max_message_bytes
+        self.requests = concurrent.futures.ThreadPoolExecutor(REQUEST_WORKERS, thread_name_prefix="lab_view-req")
+        self.clients = itertools.count(1)
+        self.sockets = set()
+
+
+def presented_token(handler: tornado.web.RequestHandler) -> Optional[str]:
+    return handler.get_query_argument(access.TOKEN_PARAM, None) or handler.get_cookie(TOKEN_COOKIE)
+
+
+class TokenGuard:
+    """Mixin: refuse HTTP requests without the token (when one is required)."""
+
+    settings_: Settings
+
+    def guard(self) -> bool:
+        if access.allowed(self.settings_.token, presented_token(self)):
+            if self.settings_.token is not None and self.get_query_argument(access.TOKEN_PARAM, None):
+                self.set_cookie(TOKEN_COOKIE, self.settings_.token, httponly=True, samesite="Strict")
+            return True
+        self.set_status(403)
+        self.set_header("Content-Type", "text/plain; charset=utf-8")
+        self.finish(TOKEN_REFUSAL + "\n")
+        return False
+
+
+class StaticFiles(TokenGuard, tornado.web.StaticFileHandler):
+    """The page's files, behind the token."""
+
+    def initialize(self, settings_: Settings, **kwargs) -> None:
+        self.settings_ = settings_
+        super().initialize(path=settings_.www, **kwargs)
+
+    async def get(self, path: str, include_body: bool = True) -> None:
+        if self.guard():
+            await super().get(path, include_body)
+
+    def set_extra_headers(self, path: str) -> None:
+        self.set_header("Cache-Control", "no-cache")
+
+
+class BridgeSocket(TokenGuard, tornado.websocket.WebSocketHandler):
+    """One client: a Session, its Outbox and the task that sends what is due."""
+
+    def initialize(self, settings_: Settings) -> None:
+        self.settings_ = settings_
+        self.session: Optional[Session] = None
+        self.outbox = Outbox()
+        self.wake_event = tornado.locks.Event()
+        self.loop = IOLoop.current()
+        self.closed = False
+
+    async def get(self, *args, **kwargs) -> None:
+        if self.request.headers.get("Upgrade", "").lower() != "websocket":
+            if self.guard():  # a browser asking for the page itself
+                self.set_header("Cache-Control", "no-cache")
+                with open(os.path.join(self.settings_.www, "index.html"), "rb") as page:
+                    self.set_header("Content-Type", "text/html; charset=utf-8")
+                    self.finish(page.read())
+            return
+        await super().get(*args, **kwargs)
+
+    def open(self, *args, **kwargs) -> None:
+        if not access.allowed(self.settings_.token, presented_token(self)):
+            self.close(POLICY_VIOLATION, TOKEN_REFUSAL)
+            return
+        self.session = Session(next(self.settings_.clients), self.settings_.bridge, self.outbox,
+                               self.settings_.max_message_bytes, self.wake)
+        self.settings_.sockets.add(self)
+        self.loop.spawn_callback(self.send_loop)
+
+    async def on_message(self, message) -> None:
+        if self.session is not None:
+            await self.loop.run_in_executor(self.settings_.requests, self.session.handle, message)
+
+    def wake(self) -> None:
+        """Called from any thread when the outbox has something new."""
+        if not self.wake_event.is_set():
+            self.loop.add_callback(self.wake_event.set)
+
+    async def send_loop(self) -> None:
+        while not self.closed:
+            payload = self.outbox.take(time.monotonic())
+            if payload is None:
+                self.wake_event.clear()
+                due = self.outbox.next_due(time.monotonic())
+                if due == 0.0:
+                    continue
+                try:
+                    await self.wake_event.wait(None if due is None else datetime.timedelta(seconds=due))
+                except tornado.util.TimeoutError:
+                    pass
+                continue
+            try:
+                await self.write_message(payload, binary=isinstance(payload, bytes))
+            except tornado.websocket.WebSocketClosedError:
+                break
+
+    def on_close(self) -> None:
+        self.closed = True
+        self.wake_event.set()
+        self.settings_.sockets.discard(self)
+        if self.session is not None:
+            self.settings_.requests.submit(self.session.close)
+
+
+def application(settings: Settings) -> tornado.web.Application:
+    """The tornado application serving the page and the websocket."""
+    return tornado.web.Application(
+        [(r"/(?:websocket)?", BridgeSocket, {"settings_": settings}),
+         (r"/(.+)", StaticFiles, {"settings_": settings})],
+        # Frames up to 2x the limit are read and answered with a status error; beyond that
+        # tornado closes the socket (1009, "message too big") without reading them.
+        websocket_max_message_size=2 * settings.max_message_bytes + 1024,
+        websocket_ping_interval=PING_INTERVAL_S)

@@ -1,0 +1,137 @@
+"""A live lab for the integration tests: a private master, turtlesim (canvas at 30 fps) and
+lab_view on a free port; and a small websocket client to talk to it.
+
+The test process itself never becomes a ROS node: it sees ROS only through the server, the
+way a browser does, so any number of these tests can share one pytest process.
+"""
+from __future__ import annotations
+
+import asyncio
+import json
+import time
+import urllib.error
+import urllib.request
+from typing import Any, Callable, Dict, List, Optional
+
+import pytest
+from tornado.websocket import WebSocketClientConnection, websocket_connect
+
+from course_testkit.isolation import free_port
+from course_testkit.master import PrivateMaster
+from course_testkit.nodes import NodeProcess, find_executable
+from course_testkit.waiting import wait_for
+
+STARTUP_TIMEOUT_S = 60.0
+IMAGE_RATE = 30
+TEST_MESSAGE_LIMIT = 200_000
+"""lab_view's --max-message-bytes in these tests: small, so the oversized frame is quick to send."""
+
+
+def http_status(url: str, headers: Optional[Dict[str, str]] = None) -> Optional[int]:
+    """The HTTP status of a GET (None when nothing answers)."""
+    try:
+        with urllib.request.urlopen(urllib.request.Request(url, headers=headers or {}), timeout=10) as reply:
+            return reply.status
+    except urllib.error.HTTPError as err:
+        return err.code
+    except OSError:
+        return None
+
+
+class Lab:
+    """The running lab: its master, turtlesim and one lab_view."""
+
+    def __init__(self, master: PrivateMaster) -> None:
+        self.master = master
+        self.turtlesim = master.start([find_executable("turtlesim", "turtlesim_node"),
+                                       "_image_rate:=%d" % IMAGE_RATE], "turtlesim")
+        self.port = free_port()
+        self.message_limit = TEST_MESSAGE_LIMIT
+        self.server = self.start_server(self.port)
+
+    def start_server(self, port: int, *extra: str) -> NodeProcess:
+        command = [find_executable("course_web", "lab_view"), "--port", str(port),
+                   "--max-message-bytes", str(TEST_MESSAGE_LIMIT), *extra]
+        node = self.master.start(command, "lab_view-%d" % port)
+        if not wait_for(lambda: "lab_view: open" in node.output() or not node.running(), STARTUP_TIMEOUT_S) \
+                or not node.running():
+            raise AssertionError("lab_view did not start:\n%s" % node.output()[-3000:])
+        return node
+
+    def url(self, path: str = "/", port: Optional[int] = None) -> str:
+        return "http://127.0.0.1:%d%s" % (port or self.port, path)
+
+    def status(self, path: str = "/", port: Optional[int] = None, **headers: str) -> Optional[int]:
+        return http_status(self.url(path, port), {k.replace("_", "-"): v for k, v in headers.items()})
+
+    def ws_url(self, port: Optional[int] = None, token: Optional[str] = None) -> str:
+        return "ws://127.0.0.1:%d/websocket%s" % (port or self.port, "?token=%s" % token if token else "")
+
+
+@pytest.fixture(scope="module")
+def lab():
+    with PrivateMaster() as master:
+        yield Lab(master)
+
+
+class Client:
+    """A rosbridge client for tests: send ops, read replies (binary image frames are kept apart)."""
+
+    def __init__(self, connection: WebSocketClientConnection) -> None:
+        self.connection = connection
+        self.images: List[bytes] = []
+
+    @classmethod
+    async def connect(cls, url: str) -> "Client":
+        return cls(await websocket_connect(url, max_message_size=64 * 1024 * 1024))
+
+    def send(self, **op: Any) -> None:
+        self.connection.write_message(json.dumps(op))
+
+    def send_raw(self, text: str) -> None:
+        self.connection.write_message(text)
+
+    async def receive(self, timeout: float) -> Optional[Dict[str, Any]]:
+        """The next JSON message, or None at the deadline (or when the socket closed)."""
+        deadline = time.monotonic() + timeout
+        while True:
+            left = deadline - time.monotonic()
+            if left <= 0:
+                return None
+            try:
+                message = await asyncio.wait_for(self.connection.read_message(), left)
+            except asyncio.TimeoutError:
+                return None
+            if message is None:
+                return None
+            if isinstance(message, bytes):
+                self.images.append(message)
+                continue
+            return json.loads(message)
+
+    async def expect(self, predicate: Callable[[Dict[str, Any]], bool], timeout: float = 20.0,
+                     what: str = "a message") -> Dict[str, Any]:
+        """The first message that satisfies `predicate`; fails after `timeout`."""
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            message = await self.receive(deadline - time.monotonic())
+            if message is not None and predicate(message):
+                return message
+        raise AssertionError("no %s within %.0f s" % (what, timeout))
+
+    def close(self) -> None:
+        self.connection.close()
+
+
+def is_error(message: Dict[str, Any]) -> bool:
+    return message.get("op") == "status" and message.get("level") == "error"
+
+
+@pytest.fixture
+def client_class():
+    return Client
+
+
+@pytest.fixture
+def error_check():
+    return is_error

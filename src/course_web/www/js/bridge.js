@@ -1,0 +1,103 @@
+// A small rosbridge v2 client: one websocket, subscriptions by id, service calls as promises,
+// and our binary image frames (4-byte header length, JSON header, JPEG/PNG bytes).
+export class Bridge {
+  constructor(url) {
+    this.url = url;
+    this.nextId = 1;
+    this.topicHandlers = new Map();   // id -> {topic, onMessage}
+    this.imageHandlers = new Map();   // topic -> onImage(blob, header)
+    this.calls = new Map();           // id -> {resolve, reject}
+    this.statusListeners = [];
+    this.stateListeners = [];
+    this.pending = [];
+    this.open();
+  }
+
+  open() {
+    this.socket = new WebSocket(this.url);
+    this.socket.binaryType = 'arraybuffer';
+    this.socket.onopen = () => {
+      this.setState('open');
+      for (const text of this.pending) this.socket.send(text);
+      this.pending = [];
+    };
+    this.socket.onclose = (event) => this.setState('closed', event.reason || ('code ' + event.code));
+    this.socket.onmessage = (event) => this.receive(event.data);
+  }
+
+  setState(state, detail) { for (const listener of this.stateListeners) listener(state, detail); }
+  onState(listener) { this.stateListeners.push(listener); }
+  onStatus(listener) { this.statusListeners.push(listener); }
+
+  send(message) {
+    const text = JSON.stringify(message);
+    if (this.socket.readyState === WebSocket.OPEN) this.socket.send(text);
+    else this.pending.push(text);
+  }
+
+  newId(op) { return op + ':' + (this.nextId++); }
+
+  receive(data) {
+    if (data instanceof ArrayBuffer) { this.receiveImage(data); return; }
+    const message = JSON.parse(data);
+    if (message.op === 'publish') {
+      for (const handler of this.topicHandlers.values()) {
+        if (handler.topic === message.topic) handler.onMessage(message.msg);
+      }
+    } else if (message.op === 'service_response') {
+      const call = this.calls.get(message.id);
+      if (call) {
+        this.calls.delete(message.id);
+        if (message.result) call.resolve(message.values); else call.reject(new Error(message.values));
+      }
+    } else if (message.op === 'status') {
+      for (const listener of this.statusListeners) listener(message);
+    }
+  }
+
+  receiveImage(buffer) {
+    const length = new DataView(buffer).getUint32(0);
+    const header = JSON.parse(new TextDecoder().decode(new Uint8Array(buffer, 4, length)));
+    const handler = this.imageHandlers.get(header.topic);
+    if (handler) handler(new Blob([new Uint8Array(buffer, 4 + length)], {type: 'image/' + header.format}), header);
+  }
+
+  subscribe(topic, type, onMessage, options = {}) {
+    const id = this.newId('subscribe:' + topic);
+    this.topicHandlers.set(id, {topic, onMessage});
+    this.send(Object.assign({op: 'subscribe', id, topic, type}, options));
+    return id;
+  }
+
+  subscribeImage(topic, format, onImage) {
+    const id = this.newId('subscribe:' + topic);
+    this.imageHandlers.set(topic, onImage);
+    this.send({op: 'subscribe', id, topic, type: 'sensor_msgs/Image', compression: format, queue_length: 1});
+    return id;
+  }
+
+  unsubscribe(id, topic) {
+    this.topicHandlers.delete(id);
+    this.imageHandlers.delete(topic);
+    this.send({op: 'unsubscribe', id, topic});
+  }
+
+  advertise(topic, type) { this.send({op: 'advertise', id: this.newId('advertise:' + topic), topic, type}); }
+  unadvertise(topic) { this.send({op: 'unadvertise', topic}); }
+  publish(topic, msg) { this.send({op: 'publish', topic, msg}); }
+
+  callService(service, args) {
+    const id = this.newId('call_service:' + service);
+    return new Promise((resolve, reject) => {
+      this.calls.set(id, {resolve, reject});
+      this.send({op: 'call_service', id, service, args});
+    });
+  }
+}
+
+// The websocket URL of the server that served this page, with the page's token if it has one.
+export function bridgeUrl(location) {
+  const scheme = location.protocol === 'https:' ? 'wss:' : 'ws:';
+  const token = new URLSearchParams(location.search).get('token');
+  return scheme + '//' + location.host + '/websocket' + (token ? '?token=' + encodeURIComponent(token) : '');
+}

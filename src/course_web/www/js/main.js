@@ -1,0 +1,20 @@
+// The page: one Bridge, one module per panel.
+import {Bridge, bridgeUrl} from './bridge.js';
+import * as canvasPanel from './canvas_panel.js';
+import * as teleopPanel from './teleop_panel.js';
+import * as consolePanel from './console_panel.js';
+
+const PANELS = {canvas: canvasPanel, teleop: teleopPanel, console: consolePanel};
+
+const bridge = new Bridge(bridgeUrl(window.location));
+const connection = document.getElementById('connection');
+const serverStatus = document.getElementById('server-status');
+bridge.onState((state, detail) => {
+  connection.dataset.state = state;
+  connection.textContent = state === 'open' ? 'connected' : state + (detail ? ': ' + detail : '');
+});
+bridge.onStatus((status) => { serverStatus.textContent = status.level + ': ' + status.msg; });
+for (const [name, panel] of Object.entries(PANELS)) {
+  panel.mount(bridge, document.querySelector('[data-panel="' + name + '"]'));
+}
+document.body.dataset.ready = 'true';

@@ -1,6 +1,8 @@
-"""Headless rendering of a pinhole camera fixed to a MuJoCo body, as Gazebo's camera sensor
-sees: it looks along the body's +x axis with +z up. No ROS here: `BodyCamera.render` turns
-(model, data, body) into an RGB array; the ROS plugin publishes it.
+"""Headless rendering of pinhole cameras: `OffscreenRenderer` draws a scene from any eye
+(capture under the world's lock, draw outside it), `BodyCamera` is one fixed to a MuJoCo body
+as Gazebo's camera sensor (along the body's +x axis with +z up), and the free camera
+(free_camera.py) orbits a point. No ROS here: they turn (model, data) into RGB arrays; the
+ROS side publishes them.
 
 OpenGL comes from a headless backend (EGL, else OSMesa; `MUJOCO_GL` picks the first to try,
 `MUJOCO_GL=disable` turns rendering off). The GL context is made lazily, in the thread that
@@ -90,8 +92,11 @@ def open_gl_context(width: int, height: int, requested: Optional[str] = None) ->
     raise RenderUnavailable("no headless OpenGL backend (%s)" % "; ".join(failures))
 
 
-class BodyCamera:
-    """Renders the view of a camera attached to a body. Not thread-safe: one thread renders."""
+class OffscreenRenderer:
+    """Renders a MuJoCo scene from an eye placed by the caller. Two halves, so the world's lock
+    is held only for the cheap one: `capture` copies the model's geoms into the scene (needs the
+    model and data consistent), `draw` rasterises and reads the pixels (needs neither).
+    Not thread-safe: one thread captures and draws."""
 
     def __init__(self, config: CameraConfig, max_geom: int = 2000) -> None:
         self.config = config
@@ -108,7 +113,8 @@ class BodyCamera:
         self._pixels = np.empty((config.height, config.width, 3), dtype=np.uint8)
         self._depth = np.empty((config.height, config.width), dtype=np.float32)
 
-    def _prepare(self, model: mujoco.MjModel) -> None:
+    def prepare(self, model: mujoco.MjModel) -> None:
+        """Open GL (once) and set up the scene for `model` (again only when the model changes)."""
         if self._failure is not None:
             raise self._failure
         if self._gl is None:
@@ -138,8 +144,32 @@ class BodyCamera:
         self._scene.flags[mujoco.mjtRndFlag.mjRND_HAZE] = False  # haze fades the horizon to black
         self._model = model
 
+    def capture(self, model: mujoco.MjModel, data: mujoco.MjData, hidden_body: int = -1) -> None:
+        """Copy the bodies' current poses into the scene (geoms of `hidden_body` invisible).
+        Raises RenderUnavailable when no GL backend can be opened (and on every later call)."""
+        if hidden_body >= model.nbody:
+            raise ValueError("body id %d out of range [0, %d)" % (hidden_body, model.nbody))
+        self.prepare(model)
+        mujoco.mjv_defaultFreeCamera(model, self._free_camera)
+        mujoco.mjv_updateScene(model, data, self._option, None, self._free_camera,
+                               mujoco.mjtCatBit.mjCAT_ALL, self._scene)
+        if hidden_body >= 0:
+            self._hide_body(model, hidden_body)
+
+    def draw(self, position: np.ndarray, rotation: np.ndarray) -> np.ndarray:
+        """The last captured scene seen from an eye at `position` whose rotation's columns are
+        forward, left and up: (height, width, 3) uint8, row 0 at the top."""
+        if self._scene is None:
+            raise RuntimeError("draw() before capture()")
+        self._gl.make_current()
+        self._place_camera(np.asarray(position, dtype=float), np.asarray(rotation, dtype=float))
+        mujoco.mjr_render(self._rect, self._scene, self._context)
+        mujoco.mjr_readPixels(self._pixels, self._depth, self._rect, self._context)
+        self._pixels[self._depth >= 1.0] = self.config.background  # nothing hit: sky
+        return np.flipud(self._pixels).copy()  # GL's rows start at the bottom
+
     def _place_camera(self, position: np.ndarray, rotation: np.ndarray) -> None:
-        """Point the scene's GL eyes along the body's +x (forward) with +z up."""
+        """Point the scene's GL eyes along the rotation's first column with its third one up."""
         forward, up = rotation[:, 0], rotation[:, 2]
         half_height = self.config.near * math.tan(self.config.vertical_fov / 2.0)
         for eye in self._scene.camera:
@@ -157,27 +187,11 @@ class BodyCamera:
                 light.pos[:], light.dir[:] = position, forward
 
     def _hide_body(self, model: mujoco.MjModel, body_id: int) -> None:
-        """Make the camera's own housing invisible (the eye sits inside it)."""
+        """Make a body invisible (a camera's housing: the eye sits inside it)."""
         for i in range(self._scene.ngeom):
             geom = self._scene.geoms[i]
             if geom.objtype == mujoco.mjtObj.mjOBJ_GEOM and model.geom_bodyid[geom.objid] == body_id:
                 geom.rgba[3] = 0.0
-
-    def render(self, model: mujoco.MjModel, data: mujoco.MjData, body_id: int) -> np.ndarray:
-        """The camera's image, (height, width, 3) uint8, row 0 at the top. Raises
-        RenderUnavailable when no GL backend can be opened (and on every later call)."""
-        if not 0 <= body_id < model.nbody:
-            raise ValueError("body id %d out of range [0, %d)" % (body_id, model.nbody))
-        self._prepare(model)
-        mujoco.mjv_defaultFreeCamera(model, self._free_camera)
-        mujoco.mjv_updateScene(model, data, self._option, None, self._free_camera,
-                               mujoco.mjtCatBit.mjCAT_ALL, self._scene)
-        self._hide_body(model, body_id)
-        self._place_camera(data.xpos[body_id], data.xmat[body_id].reshape(3, 3))
-        mujoco.mjr_render(self._rect, self._scene, self._context)
-        mujoco.mjr_readPixels(self._pixels, self._depth, self._rect, self._context)
-        self._pixels[self._depth >= 1.0] = self.config.background  # nothing hit: sky
-        return np.flipud(self._pixels).copy()  # GL's rows start at the bottom
 
     def close(self) -> None:
         """Free the GL resources; safe to call twice and from another thread."""
@@ -197,3 +211,16 @@ class BodyCamera:
                 gl.free()
         except Exception:
             pass
+
+
+class BodyCamera(OffscreenRenderer):
+    """A camera fixed to a body, as Gazebo's camera sensor: it looks along the body's +x axis
+    with +z up, and does not see its own housing."""
+
+    def render(self, model: mujoco.MjModel, data: mujoco.MjData, body_id: int) -> np.ndarray:
+        """The camera's image, (height, width, 3) uint8, row 0 at the top. Raises
+        RenderUnavailable when no GL backend can be opened (and on every later call)."""
+        if not 0 <= body_id < model.nbody:
+            raise ValueError("body id %d out of range [0, %d)" % (body_id, model.nbody))
+        self.capture(model, data, hidden_body=body_id)
+        return self.draw(data.xpos[body_id], data.xmat[body_id].reshape(3, 3))

@@ -104,10 +104,26 @@ def _inertial_xml(link: ET.Element) -> str:
         quoteattr(_fmt(pose.position)), mass, quoteattr(_fmt(full)))
 
 
+def _visual_rgba(visual: ET.Element) -> str:
+    """' rgba="..."' from a visual's <material><diffuse> (else <ambient>), '' when it has none."""
+    for tag in ("material/diffuse", "material/ambient"):
+        try:
+            values = [float(v) for v in (visual.findtext(tag) or "").split()]
+        except ValueError:
+            continue  # colour is cosmetic, never an error
+        if len(values) in (3, 4) and all(0.0 <= v <= 1.0 for v in values):
+            return ' rgba=%s' % quoteattr(_fmt(values + [1.0] * (4 - len(values))))
+    return ""
+
+
 def _link_geoms_xml(link: ET.Element) -> List[str]:
+    """The link's collision and visual geoms. The world discards visual geoms (discardvisual),
+    so, as for a URDF (appearance.py), the collision geoms take the colour of the link's first
+    visual with a <material>: what the cameras see."""
     out = []
     lname = link.get("name", "link")
-    for tag, extra in (("collision", ""), ("visual", ' contype="0" conaffinity="0" group="1" mass="0"')):
+    colour = next((c for c in map(_visual_rgba, link.findall("visual")) if c), "")
+    for tag, extra in (("collision", colour), ("visual", ' contype="0" conaffinity="0" group="1" mass="0"')):
         for i, elem in enumerate(link.findall(tag)):
             where = "link %r %s %r" % (lname, tag, elem.get("name", str(i)))
             pose = parse_pose(elem.findtext("pose"))

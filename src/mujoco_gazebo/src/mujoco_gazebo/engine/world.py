@@ -26,6 +26,7 @@ from .urdf import PluginSpec, UrdfError, inspect_urdf
 
 if TYPE_CHECKING:  # sensors are handed in by the plugins; the world only lends them its state
     from .camera import BodyCamera
+    from .free_camera import FreeCamera
     from .lidar import Lidar
 
 WORLD_FRAMES = ("", "world", "map")
@@ -363,6 +364,16 @@ class World:
     def render(self, camera: "BodyCamera", link: int) -> np.ndarray:
         """One RGB image of `camera` mounted on body `link` (an id from link_id)."""
         return camera.render(self.model, self.data, link)
+
+    def prepare(self, camera: "FreeCamera") -> None:
+        """Set a free camera up for the current model; needs no lock (a spawn replaces the model
+        object, it does not change this one's meshes)."""
+        camera.prepare(self.model)
+
+    def capture(self, camera: "FreeCamera") -> None:
+        """Copy the current scene into a free camera (its cheap half; it draws outside the lock)."""
+        self._refresh_kinematics()
+        camera.capture(self.model, self.data)
 
     def body_pose(self, bid: int) -> Pose:
         self._refresh_kinematics()

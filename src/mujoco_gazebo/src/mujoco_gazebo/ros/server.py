@@ -21,10 +21,12 @@ from ..engine import database
 from ..engine.frames import Pose, twist_relative
 from ..engine.pacing import Pacer
 from ..engine.sdf import SdfError, WorldFile
+from ..engine.window import SimulatorWindow, WindowUnavailable
 from ..engine.world import World, WorldError
 from ..plugins import Plugin, make_plugins
 from .conversions import (pose_from_msg, pose_msg_problem, pose_to_msg, stamp_from_sim, twist_from_msg,
                           twist_msg_problem, twist_to_msg)
+from .free_camera import FreeCameraPublisher
 
 
 class GazeboServer:
@@ -51,6 +53,7 @@ class GazeboServer:
         # Every attribute a callback reads is set before the first topic or service goes up: a
         # spawn request can arrive the moment its service is advertised.
         self.viewer = self._open_viewer() if gui else None
+        self.free_camera = FreeCameraPublisher(self.world, self.lock)
         self.clock_pub = rospy.Publisher("/clock", Clock, queue_size=10)
         self.model_states_pub = rospy.Publisher("~model_states", ModelStates, queue_size=1)
         self.link_states_pub = rospy.Publisher("~link_states", LinkStates, queue_size=1)
@@ -78,15 +81,15 @@ class GazeboServer:
             except (database.DatabaseError, WorldError, SdfError) as exc:
                 rospy.logwarn("world file: skipping %s: %s" % (inc.uri or inc.name, exc))
 
-    def _open_viewer(self):
-        if not os.environ.get("DISPLAY"):
-            return None
+    def _open_viewer(self) -> Optional[SimulatorWindow]:
+        """The simulator window (gui:=true), or None with one warning saying why (headless)."""
+        window = SimulatorWindow()
         try:
-            import mujoco.viewer
-            return mujoco.viewer.launch_passive(self.world.model, self.world.data)
-        except Exception as exc:  # no GL, no display: stay headless
-            rospy.logwarn("no viewer window: %s" % exc)
+            window.open(self.world.model, self.world.data, os.environ)
+        except WindowUnavailable as exc:
+            rospy.logwarn("gui: no simulator window (%s); running headless" % exc)
             return None
+        return window
 
     # ---- services ---------------------------------------------------------------------
     def _spawn(self, req) -> SpawnModelResponse:
@@ -98,8 +101,7 @@ class GazeboServer:
                 ref_pose, _ = self.world.frame_state(req.reference_frame)
                 pose = ref_pose.compose(pose_from_msg(req.initial_pose))
                 entry = self.world.spawn(req.model_name, req.model_xml, pose, req.robot_namespace)
-                if self.viewer is not None:
-                    self._reopen_viewer()
+                self._reopen_viewer()
                 self.plugins[entry.name] = make_plugins(entry, self.lock, self.world)
             except WorldError as exc:
                 return SpawnModelResponse(False, "SpawnModel: Failure - %s" % exc)
@@ -107,11 +109,14 @@ class GazeboServer:
         return SpawnModelResponse(True, "SpawnModel: Successfully spawned entity")
 
     def _reopen_viewer(self) -> None:
+        """After spawn/delete (the caller holds the lock): the window shows the new model."""
+        if self.viewer is None:
+            return
         try:
-            self.viewer.close()
-        except Exception:
-            pass
-        self.viewer = self._open_viewer()
+            self.viewer.reopen(self.world.model, self.world.data, os.environ)
+        except WindowUnavailable as exc:
+            rospy.logwarn("gui: simulator window lost (%s); running headless" % exc)
+            self.viewer = None
 
     def _delete(self, req) -> DeleteModelResponse:
         with self.lock:
@@ -121,8 +126,7 @@ class GazeboServer:
                 return DeleteModelResponse(False, "DeleteModel: %s" % exc)
             for plugin in self.plugins.pop(req.model_name, []):
                 plugin.close()
-            if self.viewer is not None:
-                self._reopen_viewer()
+            self._reopen_viewer()
         return DeleteModelResponse(True, "DeleteModel: successfully deleted model")
 
     def _get_model_state(self, req) -> GetModelStateResponse:
@@ -229,13 +233,19 @@ class GazeboServer:
         interrupted publish holds: the node hung for ever on Ctrl-C. The main thread only waits."""
         physics = threading.Thread(target=self._physics, name="physics", daemon=True)
         physics.start()
+        self.free_camera.start()
         rospy.spin()
         physics.join(timeout=5.0)
+        self.free_camera.stop()
+        if self.viewer is not None:
+            self.viewer.close()
 
     def _physics(self) -> None:
         try:
             self._loop()
         except Exception as exc:  # a dead loop must not leave a node that answers but never steps
+            if isinstance(exc, rospy.ROSException) and rospy.core.is_shutdown_requested():
+                return  # shutting down: rospy closes topics before is_shutdown() turns true
             rospy.logfatal("gazebo: the simulation loop failed: %r" % exc)
             rospy.signal_shutdown("simulation loop failed")
             raise
@@ -244,7 +254,7 @@ class GazeboServer:
         pacer = Pacer(self.rtf, time.monotonic(), self.world.time)
         self._rebase = False
         last_view = 0.0
-        while not rospy.is_shutdown():
+        while not rospy.core.is_shutdown_requested():
             with self.lock:
                 paused = self.world.paused
                 if not paused:

@@ -54,9 +54,9 @@ bootstrap() { "${chroot_root[@]}" bootstrap "$target"; }
 
 prepare() {
   "${chroot_root[@]}" prepare "$target"
-  mkdir -p "$target/course"
-  # The checkout as a fresh clone has it: tracked files only (no build, devel, venv).
-  git -C "$root" ls-files -z | (cd "$root" && tar --null -T - -cf -) | tar -xf - -C "$target/course"
+  # A fresh clone of the committed checkout, as CI and a student get it (.git included; no build,
+  # devel or venv; uncommitted changes left out).
+  git clone -q "$root" "$target/course"
   [ -d "$root/../shared" ] && cp -r "$root/../shared" "$target/shared"
   true
 }

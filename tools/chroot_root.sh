@@ -35,7 +35,10 @@ prepare() {
   # A world-writable /dev/shm as on a real machine or in a container (the bind above does not
   # carry the host's /dev/shm mount): non-root users' POSIX semaphores and shared memory.
   mountpoint -q "$target/dev/shm" || mount -t tmpfs -o mode=1777,nosuid,nodev shm "$target/dev/shm"
-  printf '127.0.0.1 localhost\n::1 localhost ip6-localhost ip6-loopback\n' > "$target/etc/hosts"
+  # As Debian's installer writes it: localhost, and this machine's name on 127.0.1.1 (the chroot
+  # shares the host's name; tools such as roswtf resolve it).
+  printf '127.0.0.1 localhost\n127.0.1.1 %s\n::1 localhost ip6-localhost ip6-loopback\n' "$(hostname)" \
+    > "$target/etc/hosts"
   cp /etc/resolv.conf "$target/etc/resolv.conf" 2>/dev/null || true
   # The host's CA bundle both as the chroot's bundle now and as a local CA, so that installing
   # ca-certificates in the chroot (update-ca-certificates rewrites the bundle) keeps it.

@@ -14,6 +14,8 @@ from dataclasses import dataclass
 from typing import Callable, List, Mapping, Optional, Sequence, Set
 from urllib.parse import urlparse
 
+from course_net.addresses import is_loopback
+
 OK, WARNING, ERROR = "ok", "warning", "error"
 
 
@@ -54,15 +56,6 @@ def host_port(uri: str) -> Optional[tuple]:
     if parsed.scheme != "http" or not parsed.hostname or parsed.port is None:
         return None
     return parsed.hostname, parsed.port
-
-
-def is_loopback(host: str) -> bool:
-    if host == "localhost":
-        return True
-    try:
-        return ipaddress.ip_address(host).is_loopback
-    except ValueError:
-        return False
 
 
 def diagnose_settings(settings: NetworkSettings, local_addresses: Set[str],

@@ -8,23 +8,14 @@ token in the URL's query (?token=...) and hands it to its websocket.
 from __future__ import annotations
 
 import hmac
-import ipaddress
 import secrets
 import socket
 from typing import Optional
 
+from course_net.addresses import is_loopback
+
 TOKEN_PARAM = "token"
 TOKEN_BYTES = 18
-
-
-def is_loopback(address: str) -> bool:
-    """True for 127.0.0.0/8, ::1 and localhost."""
-    if address == "localhost":
-        return True
-    try:
-        return ipaddress.ip_address(address).is_loopback
-    except ValueError:
-        return False
 
 
 def token_for(address: str, given: Optional[str]) -> Optional[str]:

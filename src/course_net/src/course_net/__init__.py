@@ -1,0 +1,1 @@
+"""Network address facts shared by the course's tools (no ROS in here)."""

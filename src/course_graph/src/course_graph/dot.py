@@ -10,7 +10,7 @@ import subprocess
 from pathlib import Path
 from typing import Iterable, Tuple
 
-from course_graph.graph_model import Graph
+from course_introspection.graph_model import Graph
 
 FORMATS = ("png", "svg", "pdf", "dot")
 

@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import Any, Callable, Dict, List, Optional, Sequence
 
 from course_graph.plot_buffer import SampleBuffer
-from course_graph.plot_fields import PlotField, PlotPathError, expand_shorthand, parse_steps, resolve, \
+from course_introspection.plot_fields import PlotField, PlotPathError, expand_shorthand, fields_of, parse_steps, \
     split_topic, value_of
 
 PROG = "rqt_plot"
@@ -78,23 +78,11 @@ def wait_for_topics(paths: Sequence[str], wait_s: float) -> Dict[str, str]:
         time.sleep(POLL_S)
 
 
-def fields_of(paths: Sequence[str], topics: Dict[str, str]) -> Dict[str, List[PlotField]]:
-    """Topic -> the fields to plot from it, in the order the paths were given, each once."""
-    by_topic: Dict[str, List[PlotField]] = {}
-    for path in paths:
-        split = split_topic(path, topics)
-        assert split is not None
-        topic, field_path = split
-        fields = by_topic.setdefault(topic, [])
-        fields.extend(f for f in resolve(topic, topics[topic], field_path) if f not in fields)
-    return by_topic
-
-
 def subscribe(by_topic: Dict[str, List[PlotField]], topics: Dict[str, str], buffer: SampleBuffer,
               clock: Callable[[Any], float]) -> list:
     """A subscriber per topic that adds each field's number to the buffer."""
     import rospy
-    from course_graph.plot_fields import message_class
+    from course_introspection.plot_fields import message_class
 
     def on_message(message: Any, fields: List[PlotField]) -> None:
         stamp = clock(message)

@@ -1,6 +1,6 @@
 """graph_snapshot / rqt_graph: a picture of the running nodes and topics (rqt_graph for headless machines).
 
-Queries the master (getSystemState), builds the graph (course_graph.graph_model) and writes
+Queries the master (getSystemState), builds the graph (course_introspection.graph_model) and writes
 PNG, SVG, PDF or DOT by the output's extension; prints the path. With a display and --show,
 it also opens a window.
 """
@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import List, Optional
 
 from course_graph.dot import format_of, graph_to_dot, render
-from course_graph.graph_model import GraphOptions, SystemState, build_graph
+from course_introspection.graph_model import GraphOptions, SystemState, build_graph
 from course_graph.viewer import can_show, show_png
 
 

@@ -4,7 +4,7 @@ from pathlib import Path
 import pytest
 
 from course_graph.dot import format_of, graph_to_dot, quote, render, tree_to_dot
-from course_graph.graph_model import Graph
+from course_introspection.graph_model import Graph
 
 
 def test_quote_escapes():

@@ -1,10 +1,7 @@
 import pytest
 
-from course_graph.plot_cli import PlotError, fields_of, output_path, parse_args, requested_paths
-from course_graph.plot_fields import PlotPathError
-
-TOPICS = {"/turtle1/pose": "turtlesim/Pose", "/rosout": "rosgraph_msgs/Log"}
-
+from course_graph.plot_cli import PlotError, output_path, parse_args, requested_paths
+from course_introspection.plot_fields import PlotPathError
 
 def test_defaults():
     args = parse_args(["/turtle1/pose/x"])
@@ -27,19 +24,6 @@ def test_relative_names_resolve_in_the_namespace(monkeypatch):
 def test_syntax_errors_come_before_any_wait():
     with pytest.raises(PlotPathError):
         requested_paths(["/turtle1/pose/x["])
-
-
-def test_fields_grouped_by_topic_in_given_order():
-    by_topic = fields_of(["/turtle1/pose/y", "/rosout/level", "/turtle1/pose/x"], TOPICS)
-    assert {t: [f.label for f in fields] for t, fields in by_topic.items()} == {
-        "/turtle1/pose": ["/turtle1/pose/y", "/turtle1/pose/x"], "/rosout": ["/rosout/level"]}
-
-
-def test_a_field_named_twice_is_plotted_once():
-    by_topic = fields_of(["/turtle1/pose/x", "/turtle1/pose", "/turtle1/pose/x"], TOPICS)
-    assert [f.label for f in by_topic["/turtle1/pose"]] == [
-        "/turtle1/pose/x", "/turtle1/pose/y", "/turtle1/pose/theta", "/turtle1/pose/linear_velocity",
-        "/turtle1/pose/angular_velocity"]
 
 
 def test_output_folder_and_format_checked_first(tmp_path):

@@ -1,6 +1,6 @@
 import pytest
 
-from course_graph.graph_model import GraphOptions, SystemState, build_graph, in_namespace
+from course_introspection.graph_model import GraphOptions, SystemState, build_graph, in_namespace
 
 # What getSystemState() answers for two_turtles.launch plus a teleop on /turtle1/cmd_vel.
 MASTER_STATE = [

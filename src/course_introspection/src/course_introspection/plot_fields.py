@@ -10,7 +10,7 @@ Types come from roslib.message.get_message_class, so any built message works wit
 from __future__ import annotations
 
 import re
-from typing import Any, Iterable, List, NamedTuple, Optional, Sequence, Tuple
+from typing import Any, Dict, Iterable, List, Mapping, NamedTuple, Optional, Sequence, Tuple
 
 NUMERIC_TYPES = frozenset({"int8", "uint8", "int16", "uint16", "int32", "uint32", "int64", "uint64",
                            "float32", "float64", "bool", "char", "byte"})
@@ -120,6 +120,20 @@ def resolve(topic: str, type_name: str, field_path: str) -> List[PlotField]:
                 raise PlotPathError("%s: %s has only %d elements" % (label, step.name, size))
             current = base
     return _numbers_at(PlotField(topic, steps), current)
+
+
+def fields_of(paths: Sequence[str], topics: Mapping[str, str]) -> Dict[str, List[PlotField]]:
+    """Topic -> the fields to plot from it, in the order the paths were given, each once.
+    `topics` maps each advertised topic to its type; a path on none of them is a PlotPathError."""
+    by_topic: Dict[str, List[PlotField]] = {}
+    for path in paths:
+        split = split_topic(path, topics)
+        if split is None:
+            raise PlotPathError("topic %s does not exist (no node publishes it)" % path)
+        topic, field_path = split
+        fields = by_topic.setdefault(topic, [])
+        fields.extend(f for f in resolve(topic, topics[topic], field_path) if f not in fields)
+    return by_topic
 
 
 def _path(topic: str, steps: Sequence[Step]) -> str:

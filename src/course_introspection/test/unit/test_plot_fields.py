@@ -3,8 +3,8 @@ import math
 import pytest
 from hypothesis import given, strategies as st
 
-from course_graph.plot_fields import PlotField, PlotPathError, Step, expand_shorthand, message_class, \
-    parse_steps, resolve, split_topic, value_of
+from course_introspection.plot_fields import PlotField, PlotPathError, Step, expand_shorthand, message_class, \
+    fields_of, parse_steps, resolve, split_topic, value_of
 
 NAMES = st.from_regex(r"[A-Za-z][A-Za-z0-9_]{0,8}", fullmatch=True)
 STEPS = st.lists(st.builds(Step, NAMES, st.none() | st.integers(0, 999)), min_size=1, max_size=5)
@@ -155,3 +155,24 @@ def test_bool_and_nan_values():
     assert value_of(flag, parse_steps("data")) == 1.0
     number = message_class("std_msgs/Float64")(data=float("nan"))
     assert math.isnan(value_of(number, parse_steps("data")))
+
+
+TOPICS = {"/turtle1/pose": "turtlesim/Pose", "/rosout": "rosgraph_msgs/Log"}
+
+
+def test_fields_grouped_by_topic_in_given_order():
+    by_topic = fields_of(["/turtle1/pose/y", "/rosout/level", "/turtle1/pose/x"], TOPICS)
+    assert {t: [f.label for f in fields] for t, fields in by_topic.items()} == {
+        "/turtle1/pose": ["/turtle1/pose/y", "/turtle1/pose/x"], "/rosout": ["/rosout/level"]}
+
+
+def test_a_field_named_twice_is_plotted_once():
+    by_topic = fields_of(["/turtle1/pose/x", "/turtle1/pose", "/turtle1/pose/x"], TOPICS)
+    assert [f.label for f in by_topic["/turtle1/pose"]] == [
+        "/turtle1/pose/x", "/turtle1/pose/y", "/turtle1/pose/theta", "/turtle1/pose/linear_velocity",
+        "/turtle1/pose/angular_velocity"]
+
+
+def test_a_path_on_no_topic_is_refused():
+    with pytest.raises(PlotPathError, match="topic /nowhere/x does not exist"):
+        fields_of(["/nowhere/x"], TOPICS)

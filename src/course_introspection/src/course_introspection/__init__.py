@@ -1,0 +1,1 @@
+"""Plain-data views of a running ROS system: the node graph and rqt_plot field paths."""

@@ -17,7 +17,7 @@ import rospy
 
 from course_web import access
 from course_web.protocol import DEFAULT_MAX_MESSAGE_BYTES
-from course_web.ros_bridge import RosBridge
+from course_web.ros_bridge import RosBridge, RosMaster
 from course_web.server import Settings, application
 
 DEFAULT_PORT = 8080
@@ -42,7 +42,7 @@ def www_folder(given: str) -> str:
 
 async def serve(args: argparse.Namespace, token: Optional[str]) -> None:
     bridge = RosBridge()
-    settings = Settings(bridge, www_folder(args.www), token, args.max_message_bytes)
+    settings = Settings(bridge, www_folder(args.www), token, args.max_message_bytes, RosMaster())
     server = application(settings).listen(args.port, address=args.address)
     stop = asyncio.Event()
     loop = asyncio.get_running_loop()

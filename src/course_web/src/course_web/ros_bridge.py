@@ -20,6 +20,7 @@ import rospy
 import rosservice
 
 from course_web import frames
+from course_web.introspect import ApiError
 from course_web.convert import ConversionError, json_to_message, message_class, message_to_json, service_class
 from course_web.protocol import Bridge, Deliver, RequestError, ServiceDone, publish_frame
 
@@ -43,27 +44,48 @@ class _Publisher:
 
 
 class _Feed:
-    """One topic's rospy.Subscriber and the clients it feeds."""
+    """One topic's rospy.Subscriber and the clients it feeds.
+
+    The feed keeps each latching publisher's last message: rospy hands it over only when the
+    subscriber connects, so a client that joins a shared feed later (a second page watching
+    /tf_static) gets it from here, as it would from a subscriber of its own."""
 
     def __init__(self, topic: str, type_name: str, cls: Type[genpy.Message]) -> None:
         self.topic, self.type_name = topic, type_name
         self.lock = threading.Lock()
         self.readers: Dict[Hashable, Tuple[Optional[str], Deliver]] = {}
+        self.latched: Dict[str, genpy.Message] = {}  # publisher's caller id -> its last message
         self.subscriber = rospy.Subscriber(topic, cls, self.on_message, queue_size=SUBSCRIBER_QUEUE)
 
-    def on_message(self, msg: genpy.Message) -> None:
+    def add_reader(self, key: Hashable, compression: Optional[str], deliver: Deliver) -> None:
         with self.lock:
+            self.readers[key] = (compression, deliver)
+            replay = list(self.latched.values())
+        for msg in replay:
+            payload = self.encoded(msg, compression)
+            if payload is not None:
+                deliver(payload)
+
+    def on_message(self, msg: genpy.Message) -> None:
+        header = getattr(msg, "_connection_header", None) or {}
+        with self.lock:
+            if header.get("latching") == "1":
+                self.latched[header.get("callerid", "")] = msg
             readers = list(self.readers.values())
         encoded: Dict[Optional[str], Any] = {}
         for compression, deliver in readers:
             if compression not in encoded:
-                try:
-                    encoded[compression] = self.encode(msg, compression)
-                except (ValueError, TypeError) as err:
-                    rospy.logwarn_throttle(5.0, "lab_view: %s: cannot send a message: %s" % (self.topic, err))
-                    encoded[compression] = None
+                encoded[compression] = self.encoded(msg, compression)
             if encoded[compression] is not None:
                 deliver(encoded[compression])
+
+    def encoded(self, msg: genpy.Message, compression: Optional[str]) -> Any:
+        """The payload for a reader asking `compression`, or None (with a throttled warning)."""
+        try:
+            return self.encode(msg, compression)
+        except (ValueError, TypeError) as err:
+            rospy.logwarn_throttle(5.0, "lab_view: %s: cannot send a message: %s" % (self.topic, err))
+            return None
 
     def encode(self, msg: genpy.Message, compression: Optional[str]):
         if compression is None:
@@ -157,8 +179,7 @@ class RosBridge(Bridge):
             feed = self.feeds.get(topic)
             if feed is None:
                 feed = self.feeds[topic] = _Feed(topic, type_name, cls)
-            with feed.lock:
-                feed.readers[key] = (compression, deliver)
+            feed.add_reader(key, compression, deliver)  # under the lock: unsubscribe may be ending this feed
         return type_name
 
     def unsubscribe(self, client: Hashable, key: Hashable) -> None:
@@ -204,3 +225,19 @@ class RosBridge(Bridge):
 
     def shutdown(self) -> None:
         self.calls.shutdown(wait=False)
+
+
+class RosMaster:
+    """course_web.introspect's Master, asked over XML-RPC (a proxy per call: they are not thread-safe)."""
+
+    def _ask(self, question: str) -> Any:
+        try:
+            return getattr(rosgraph.Master(CALLER_ID), question)()
+        except (rosgraph.MasterException, OSError) as err:
+            raise ApiError("the ROS master at %s does not answer: %s" % (rosgraph.get_master_uri(), err), 503)
+
+    def system_state(self) -> Any:
+        return self._ask("getSystemState")
+
+    def topic_types(self) -> Dict[str, str]:
+        return dict(self._ask("getTopicTypes"))

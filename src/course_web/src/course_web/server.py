@@ -13,9 +13,10 @@ from __future__ import annotations
 import concurrent.futures
 import datetime
 import itertools
+import json
 import os
 import time
-from typing import Optional
+from typing import Any, Callable, Dict, Optional
 
 import tornado.locks
 import tornado.util
@@ -23,7 +24,7 @@ import tornado.web
 import tornado.websocket
 from tornado.ioloop import IOLoop
 
-from course_web import access
+from course_web import access, introspect
 from course_web.outbox import Outbox
 from course_web.protocol import DEFAULT_MAX_MESSAGE_BYTES, Bridge, Session
 
@@ -38,8 +39,10 @@ class Settings:
     """What the handlers share: the bridge, the token, the limits, the page's folder."""
 
     def __init__(self, bridge: Bridge, www: str, token: Optional[str] = None,
-                 max_message_bytes: int = DEFAULT_MAX_MESSAGE_BYTES) -> None:
+                 max_message_bytes: int = DEFAULT_MAX_MESSAGE_BYTES,
+                 master: Optional[introspect.Master] = None) -> None:
         self.bridge, self.www, self.token, self.max_message_bytes = bridge, www, token, max_message_bytes
+        self.master = master
         self.requests = concurrent.futures.ThreadPoolExecutor(REQUEST_WORKERS, thread_name_prefix="lab_view-req")
         self.clients = itertools.count(1)
         self.sockets = set()
@@ -78,6 +81,41 @@ class StaticFiles(TokenGuard, tornado.web.StaticFileHandler):
 
     def set_extra_headers(self, path: str) -> None:
         self.set_header("Cache-Control", "no-cache")
+
+
+class Api(TokenGuard, tornado.web.RequestHandler):
+    """GET /api/graph, /api/topics, /api/plot?path=...: JSON for the page's panels.
+
+    The master is asked on the request pool (XML-RPC blocks); a failure is a JSON {"error": ...}
+    with a 4xx/5xx status, never an exception out of the handler."""
+
+    QUESTIONS: Dict[str, Callable[["Api", introspect.Master], Dict[str, Any]]] = {
+        "graph": lambda self, master: introspect.graph(master, self.get_query_argument("debug", "") == "true"),
+        "topics": lambda self, master: introspect.topics(master),
+        "plot": lambda self, master: introspect.plot_fields(master, self.get_query_argument("path", "")),
+    }
+
+    def initialize(self, settings_: Settings) -> None:
+        self.settings_ = settings_
+
+    async def get(self, question: str) -> None:
+        if not self.guard():
+            return
+        self.set_header("Content-Type", "application/json; charset=utf-8")
+        self.set_header("Cache-Control", "no-store")
+        master = self.settings_.master
+        try:
+            if master is None:
+                raise introspect.ApiError("this server has no ROS master to ask", 503)
+            answer = await IOLoop.current().run_in_executor(self.settings_.requests, self.QUESTIONS[question],
+                                                            self, master)
+        except introspect.ApiError as err:
+            self.set_status(err.status)
+            answer = {"error": str(err)}
+        except Exception as err:  # noqa: BLE001 - a page's question must not break the server
+            self.set_status(500)
+            answer = {"error": "%s failed inside the server: %r" % (question, err)}
+        self.finish(json.dumps(answer))
 
 
 class BridgeSocket(TokenGuard, tornado.websocket.WebSocketHandler):
@@ -149,6 +187,7 @@ def application(settings: Settings) -> tornado.web.Application:
     """The tornado application serving the page and the websocket."""
     return tornado.web.Application(
         [(r"/(?:websocket)?", BridgeSocket, {"settings_": settings}),
+         (r"/api/(graph|topics|plot)", Api, {"settings_": settings}),
          (r"/(.+)", StaticFiles, {"settings_": settings})],
         # Frames up to 2x the limit are read and answered with a status error; beyond that
         # tornado closes the socket (1009, "message too big") without reading them.

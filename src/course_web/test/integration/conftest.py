@@ -16,6 +16,7 @@ from typing import Any, Callable, Dict, List, Optional
 import pytest
 from tornado.websocket import WebSocketClientConnection, websocket_connect
 
+from course_testkit.browser import TIMEOUT_S as BROWSER_TIMEOUT_S, chromium
 from course_testkit.isolation import free_port
 from course_testkit.master import PrivateMaster
 from course_testkit.nodes import NodeProcess, find_executable
@@ -72,6 +73,26 @@ class Lab:
 def lab():
     with PrivateMaster() as master:
         yield Lab(master)
+
+
+class SimulatorLab(Lab):
+    """003 Part II's world instead of turtlesim: RRBot (headless), a coke can spawned as the text
+    does, and lab_view."""
+
+    def __init__(self, master: PrivateMaster) -> None:
+        self.master = master
+        self.world = master.start(["roslaunch", "rrbot_gazebo", "rrbot_world.launch", "gui:=false"], "rrbot_world")
+        self.can = master.start([find_executable("gazebo_ros", "spawn_model"), "-database", "coke_can", "-sdf",
+                                 "-model", "coke_can", "-x", "1", "-z", "1"], "coke_can")
+        self.port = free_port()
+        self.message_limit = TEST_MESSAGE_LIMIT
+        self.server = self.start_server(self.port)
+
+
+@pytest.fixture(scope="module")
+def sim_lab():
+    with PrivateMaster() as master:
+        yield SimulatorLab(master)
 
 
 class Client:
@@ -135,3 +156,26 @@ def client_class():
 @pytest.fixture
 def error_check():
     return is_error
+
+
+# ---- a real browser ------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def browser():
+    """Headless Debian chromium (course_testkit.browser), one per test module."""
+    with chromium() as driver:
+        yield driver
+
+
+def open_lab_page(driver, lab: Lab) -> None:
+    """Load the page and wait until its websocket is open."""
+    driver.get(lab.url("/"))
+    connected = wait_for(lambda: driver.execute_script(
+        "return document.body.dataset.ready === 'true' && "
+        "document.getElementById('connection').dataset.state === 'open'"), BROWSER_TIMEOUT_S)
+    assert connected, "the page did not connect: %s" % driver.execute_script(
+        "return document.getElementById('connection').textContent")
+
+
+@pytest.fixture
+def open_page():
+    return open_lab_page

@@ -2,30 +2,29 @@
 
 It loads; its canvas follows turtlesim (pixels change when the turtle moves); arrow keys pressed
 in the page move the turtle; the console shows turtlesim's warning and the level filter hides
-INFO; screenshots are saved to the artifact folder and checked for content.
+INFO; the plot draws /turtle1/pose/x:y (both lines, in rqt_plot's colours) and says why a path
+cannot be plotted; the node graph shows turtlesim and the page's own node and follows nodes that
+come and go; the TF tree nests a static and a moving frame. Screenshots are saved to the
+artifact folder and checked for content. The simulator's panels are in test_lab_view_simulator.
 """
 from __future__ import annotations
 
 import asyncio
 import os
-import shutil
 
 import pytest
 
 from course_testkit.artifacts import artifact_path
+from course_testkit.browser import require_browser
+from course_testkit.nodes import find_executable
+from course_testkit.pictures import load_png
 from course_testkit.waiting import wait_for
 
-webdriver = pytest.importorskip("selenium.webdriver", reason="python3-selenium is not installed (tools/apt-packages.txt)")
-CHROMIUM = shutil.which("chromium")
-CHROMEDRIVER = shutil.which("chromedriver")
-if CHROMIUM is None or CHROMEDRIVER is None:
-    pytest.skip("Debian's chromium and chromium-driver are not installed (tools/apt-packages.txt)",
-                allow_module_level=True)
-
+require_browser()
 from PIL import Image  # noqa: E402
-from selenium.webdriver.chrome.service import Service as ChromeService  # noqa: E402
 from selenium.webdriver.common.by import By  # noqa: E402
 from selenium.webdriver.common.keys import Keys  # noqa: E402
+import numpy as np  # noqa: E402
 
 BACKGROUND = (69, 86, 255)
 TIMEOUT_S = 60.0
@@ -40,22 +39,6 @@ for (let i = 0; i < data.length; i += 4) {
 }
 return {background: background, other: other, digest: sum, frames: Number(canvas.dataset.frames || 0)};
 """
-
-
-@pytest.fixture(scope="module")
-def browser():
-    options = webdriver.ChromeOptions()
-    options.binary_location = CHROMIUM
-    for argument in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
-                     "--window-size=1280,1400", "--no-first-run", "--disable-extensions"):
-        options.add_argument(argument)
-    driver = webdriver.Chrome(service=ChromeService(executable_path=CHROMEDRIVER), options=options)
-    driver.set_page_load_timeout(TIMEOUT_S)
-    driver.set_script_timeout(TIMEOUT_S)
-    try:
-        yield driver
-    finally:
-        driver.quit()
 
 
 def call(lab, client_class, service, args):
@@ -85,22 +68,14 @@ def canvas_stats(driver):
     return driver.execute_script(CANVAS_STATS, list(BACKGROUND))
 
 
-def open_page(driver, lab):
-    driver.get(lab.url("/"))
-    assert wait_for(lambda: driver.execute_script(
-        "return document.body.dataset.ready === 'true' && "
-        "document.getElementById('connection').dataset.state === 'open'"), TIMEOUT_S), \
-        "the page did not connect: %s" % driver.find_element(By.ID, "connection").text
-
-
-def test_the_page_loads_with_its_panels(browser, lab):
+def test_the_page_loads_with_its_panels(browser, lab, open_page):
     open_page(browser, lab)
     panels = [element.get_attribute("data-panel") for element in browser.find_elements(By.CSS_SELECTOR, "[data-panel]")]
     assert {"canvas", "teleop", "console", "graph", "tf", "plot", "camera", "view3d"} <= set(panels)
     assert browser.title == "The lab in a browser"
 
 
-def test_the_canvas_follows_the_turtle(browser, lab, client_class):
+def test_the_canvas_follows_the_turtle(browser, lab, client_class, open_page):
     open_page(browser, lab)
     call(lab, client_class, "/turtle1/teleport_absolute", {"x": 5.5, "y": 5.5, "theta": 0.0})
     call(lab, client_class, "/clear", {})
@@ -117,7 +92,7 @@ def test_the_canvas_follows_the_turtle(browser, lab, client_class):
     save_and_check(browser, "lab_view_canvas_after_teleport")
 
 
-def test_arrow_keys_in_the_page_move_the_turtle(browser, lab, client_class):
+def test_arrow_keys_in_the_page_move_the_turtle(browser, lab, client_class, open_page):
     open_page(browser, lab)
     call(lab, client_class, "/turtle1/teleport_absolute", {"x": 3.0, "y": 5.5, "theta": 0.0})
     start = pose(lab, client_class)
@@ -136,7 +111,7 @@ def test_arrow_keys_in_the_page_move_the_turtle(browser, lab, client_class):
     assert wait_for(turned, TIMEOUT_S, interval=0.2), "ArrowLeft in the page did not turn the turtle"
 
 
-def test_the_console_shows_turtlesims_warning_and_filters_by_level(browser, lab, client_class):
+def test_the_console_shows_turtlesims_warning_and_filters_by_level(browser, lab, client_class, open_page):
     open_page(browser, lab)
     # A linear speed beyond float32's range: turtlesim clamps it and warns on /rosout.
     async def bad_command():
@@ -157,6 +132,105 @@ def test_the_console_shows_turtlesims_warning_and_filters_by_level(browser, lab,
     browser.find_element(By.CSS_SELECTOR, "#console-level option[value='4']").click()
     assert browser.execute_script(info_rows) == 0
     save_and_check(browser, "lab_view_console_warning")
+
+
+PLOT_COLOURS = {"C0": (0x1f, 0x77, 0xb4), "C1": (0xff, 0x7f, 0x0e)}
+
+
+def colour_pixels(image, colour, tolerance=40):
+    return int((np.abs(image.astype(int) - np.array(colour)).sum(axis=2) < tolerance).sum())
+
+
+def element_png(driver, element_id, name):
+    """A screenshot of one element, kept in the artifact folder, as an RGB array."""
+    path = artifact_path(name, ".png")
+    with open(path, "wb") as out:
+        out.write(driver.find_element(By.ID, element_id).screenshot_as_png)
+    return load_png(path)
+
+
+def test_the_plot_draws_the_turtles_pose(browser, lab, client_class, open_page):
+    open_page(browser, lab)
+    path = browser.find_element(By.ID, "plot-path")
+    path.clear()
+    path.send_keys("/turtle1/pose/x:y", Keys.ENTER)
+    assert wait_for(lambda: browser.execute_script(
+        "return document.getElementById('plot-legend').textContent"), TIMEOUT_S), "the plot named no fields"
+    legend = browser.find_element(By.ID, "plot-legend").text
+    assert "/turtle1/pose/x" in legend and "/turtle1/pose/y" in legend, legend
+    for x, y in ((2.0, 8.0), (8.0, 2.0), (5.0, 5.0)):  # steps, so both lines span the height
+        call(lab, client_class, "/turtle1/teleport_absolute", {"x": x, "y": y, "theta": 0.0})
+        samples = int(browser.find_element(By.CSS_SELECTOR, "[data-panel=plot]").get_attribute("data-samples") or 0)
+        assert wait_for(lambda: int(browser.find_element(By.CSS_SELECTOR, "[data-panel=plot]")
+                                    .get_attribute("data-samples") or 0) > samples + 20, TIMEOUT_S), "no new samples"
+    plot = element_png(browser, "plot-canvas", "lab_view_plot")
+    for name, colour in PLOT_COLOURS.items():
+        rows = np.nonzero((np.abs(plot.astype(int) - np.array(colour)).sum(axis=2) < 40).any(axis=1))[0]
+        assert len(rows) > 40, "the %s line (%s) spans only %d rows of the plot" % (name, colour, len(rows))
+
+
+def test_a_plot_path_that_cannot_be_plotted_says_why(browser, lab, open_page):
+    open_page(browser, lab)
+    path = browser.find_element(By.ID, "plot-path")
+    for typed, said in (("/turtle1/pose/z", "has no field z"), ("/turtle9/pose/x:y", "does not exist"),
+                        ("/rosout/msg", "not numeric")):
+        path.clear()
+        path.send_keys(typed, Keys.ENTER)
+        assert wait_for(lambda: said in browser.find_element(By.ID, "plot-message").text, TIMEOUT_S), \
+            "%s: the page said %r" % (typed, browser.find_element(By.ID, "plot-message").text)
+
+
+def graph_names(driver):
+    return set(driver.execute_script(
+        "return [...document.querySelectorAll('#graph-svg g.vertex')].map(g => g.dataset.name)"))
+
+
+def graph_edges(driver):
+    return set(driver.execute_script(
+        "return [...document.querySelectorAll('#graph-svg path.edge')].map(p => p.dataset.from + ' ' + p.dataset.to)"))
+
+
+def test_the_graph_shows_the_nodes_and_refreshes(browser, lab, open_page):
+    open_page(browser, lab)
+    assert wait_for(lambda: {"/turtlesim", "/turtle1/cmd_vel", "/turtle1/pose", "/lab_view"} <= graph_names(browser),
+                    TIMEOUT_S), graph_names(browser)
+    # The page's teleop publishes cmd_vel through lab_view: publisher -> topic -> subscriber.
+    wanted = {"/lab_view /turtle1/cmd_vel", "/turtle1/cmd_vel /turtlesim", "/turtlesim /turtle1/pose"}
+    assert wait_for(lambda: wanted <= graph_edges(browser), TIMEOUT_S), graph_edges(browser)
+    assert "/rosout" not in graph_names(browser)  # hidden, as in rqt_graph
+    extra = lab.master.start([find_executable("topic_tools", "relay"), "/turtle1/pose", "/pose_copy",
+                              "__name:=pose_relay"], "pose_relay")
+    try:
+        assert wait_for(lambda: {"/pose_relay", "/pose_copy"} <= graph_names(browser), TIMEOUT_S), \
+            "a new node did not appear: %s" % graph_names(browser)
+    finally:
+        lab.master.stop_node(extra)
+    assert wait_for(lambda: "/pose_relay" not in graph_names(browser), TIMEOUT_S), "a stopped node stayed"
+    browser.execute_script("document.getElementById('graph-svg').scrollIntoView()")
+    picture = element_png(browser, "graph-svg", "lab_view_graph")
+    ink = int((picture.astype(int).sum(axis=2) < 500).sum())  # the outlines, arrows and names
+    assert ink > 1500 and picture.shape[1] > 400, "the graph picture is nearly empty: %d dark pixels, %s" % (
+        ink, picture.shape)
+
+
+def test_the_tf_tree_shows_static_and_moving_frames(browser, lab, client_class, open_page):
+    static = lab.master.start([find_executable("tf2_ros", "static_transform_publisher"),
+                               "1", "0", "0", "0", "0", "0", "world", "turtle_base"], "static_tf")
+    moving = lab.master.start(["rostopic", "pub", "-r", "20", "/tf", "tf2_msgs/TFMessage",
+                               "transforms: [{header: {frame_id: turtle_base}, child_frame_id: turtle_head, "
+                               "transform: {rotation: {w: 1.0}}}]"], "moving_tf")
+    try:
+        open_page(browser, lab)
+        nested = ("return !!document.querySelector('#tf-tree li[data-frame=\"world\"] > ul > "
+                  "li[data-frame=\"turtle_base\"] > ul > li[data-frame=\"turtle_head\"]')")
+        assert wait_for(lambda: browser.execute_script(nested), TIMEOUT_S), \
+            "world > turtle_base > turtle_head not shown: %s" % browser.find_element(By.ID, "tf-tree").text
+        text = browser.find_element(By.ID, "tf-tree").text
+        assert "turtle_base (static)" in text, text
+        assert wait_for(lambda: " Hz" in browser.find_element(By.ID, "tf-tree").text, TIMEOUT_S), text
+    finally:
+        lab.master.stop_node(moving)
+        lab.master.stop_node(static)
 
 
 def save_and_check(driver, name):

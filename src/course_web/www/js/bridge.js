@@ -5,7 +5,7 @@ export class Bridge {
     this.url = url;
     this.nextId = 1;
     this.topicHandlers = new Map();   // id -> {topic, onMessage}
-    this.imageHandlers = new Map();   // topic -> onImage(blob, header)
+    this.imageHandlers = new Map();   // topic -> Map(id -> onImage(blob, header))
     this.calls = new Map();           // id -> {resolve, reject}
     this.statusListeners = [];
     this.stateListeners = [];
@@ -58,8 +58,10 @@ export class Bridge {
   receiveImage(buffer) {
     const length = new DataView(buffer).getUint32(0);
     const header = JSON.parse(new TextDecoder().decode(new Uint8Array(buffer, 4, length)));
-    const handler = this.imageHandlers.get(header.topic);
-    if (handler) handler(new Blob([new Uint8Array(buffer, 4 + length)], {type: 'image/' + header.format}), header);
+    const handlers = this.imageHandlers.get(header.topic);
+    if (!handlers || handlers.size === 0) return;
+    const blob = new Blob([new Uint8Array(buffer, 4 + length)], {type: 'image/' + header.format});
+    for (const handler of handlers.values()) handler(blob, header);
   }
 
   subscribe(topic, type, onMessage, options = {}) {
@@ -71,14 +73,16 @@ export class Bridge {
 
   subscribeImage(topic, format, onImage) {
     const id = this.newId('subscribe:' + topic);
-    this.imageHandlers.set(topic, onImage);
+    if (!this.imageHandlers.has(topic)) this.imageHandlers.set(topic, new Map());
+    this.imageHandlers.get(topic).set(id, onImage);
     this.send({op: 'subscribe', id, topic, type: 'sensor_msgs/Image', compression: format, queue_length: 1});
     return id;
   }
 
   unsubscribe(id, topic) {
     this.topicHandlers.delete(id);
-    this.imageHandlers.delete(topic);
+    const handlers = this.imageHandlers.get(topic);
+    if (handlers) handlers.delete(id);
     this.send({op: 'unsubscribe', id, topic});
   }
 

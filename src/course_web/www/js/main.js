@@ -3,8 +3,16 @@ import {Bridge, bridgeUrl} from './bridge.js';
 import * as canvasPanel from './canvas_panel.js';
 import * as teleopPanel from './teleop_panel.js';
 import * as consolePanel from './console_panel.js';
+import * as view3dPanel from './view3d_panel.js';
+import * as cameraPanel from './camera_panel.js';
+import * as plotPanel from './plot_panel.js';
+import * as tfPanel from './tf_panel.js';
+import * as graphPanel from './graph_panel.js';
 
-const PANELS = {canvas: canvasPanel, teleop: teleopPanel, console: consolePanel};
+const PANELS = {
+  canvas: canvasPanel, teleop: teleopPanel, console: consolePanel, view3d: view3dPanel, camera: cameraPanel,
+  plot: plotPanel, tf: tfPanel, graph: graphPanel,
+};
 
 const bridge = new Bridge(bridgeUrl(window.location));
 const connection = document.getElementById('connection');

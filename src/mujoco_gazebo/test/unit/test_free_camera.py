@@ -2,7 +2,6 @@
 error or a clamp, never a crash), MuJoCo's MjvCamera seeing the same, and rendered pictures
 (skipped, with the reason, only when no headless GL backend can be opened)."""
 import math
-import sys
 from pathlib import Path
 
 import mujoco
@@ -20,8 +19,7 @@ from mujoco_gazebo.engine.limits import WORLD_BOUND_M
 from mujoco_gazebo.engine.window import display_problem, view_of
 from mujoco_gazebo.engine.world import World
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "nodes"))
-from pictures import orange_pixels, red_pixels  # noqa: E402 - shared with the rostest nodes
+from course_testkit.pictures import orange_pixels, red_pixels
 
 RRBOT = (Path(__file__).resolve().parents[3] / "rrbot_description" / "urdf" / "rrbot.urdf").read_text()
 

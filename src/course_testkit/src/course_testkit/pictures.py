@@ -1,6 +1,7 @@
-"""Pictures in the simulator's tests: which pixels are RRBot's orange or the coke can's red
-(lit or in shade, as MuJoCo draws them), and PNG files in and out (through Qt's QImage, which
-needs no display), so a test can keep what it saw for a human in its artifact folder."""
+"""Pictures in tests (the simulator's, the lab page's): which pixels are RRBot's orange or the
+coke can's red (lit or in shade, as MuJoCo draws them), and PNG files in and out (through Qt's
+QImage, which needs no display), so a test can keep what it saw for a human in its artifact
+folder."""
 import numpy as np
 from PyQt5.QtGui import QImage
 

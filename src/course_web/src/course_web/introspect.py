@@ -1,0 +1,80 @@
+"""What the page's graph, topic and plot panels ask the server, as JSON-ready dicts.
+
+The page refreshes its node graph and its topic lists by GETting /api/graph and /api/topics, and
+turns an rqt_plot path (`/turtle1/pose/x:y`) into the fields to read with /api/plot, so the
+browser never parses ROS types itself. The answers are built here from what the master says
+(passed in, so this is tested without one) with course_introspection, the same model the
+rqt_graph and rqt_plot stand-ins use; the page then subscribes through the rosbridge socket.
+"""
+from __future__ import annotations
+
+from typing import Any, Dict, List, Mapping, Optional, Protocol, Sequence
+
+from course_introspection.graph_model import GraphOptions, SystemState, build_graph
+from course_introspection.plot_fields import PlotPathError, expand_shorthand, fields_of, parse_steps
+
+Json = Dict[str, Any]
+MAX_PLOT_SPEC = 2000
+MAX_PLOT_FIELDS = 32
+
+
+class ApiError(ValueError):
+    """A request the API cannot answer; `status` is the HTTP status to give."""
+
+    def __init__(self, message: str, status: int = 400) -> None:
+        super().__init__(message)
+        self.status = status
+
+
+class Master(Protocol):
+    """The two questions asked of the ROS master (rosgraph.Master answers both)."""
+
+    def system_state(self) -> Sequence[Sequence]:
+        """getSystemState(): [publishers, subscribers, services], each [name, [nodes]] rows."""
+
+    def topic_types(self) -> Mapping[str, str]:
+        """getTopicTypes() as topic -> type."""
+
+
+def graph(master: Master, show_debug: bool = False) -> Json:
+    """The node/topic graph as rqt_graph's default view draws it (rosout hidden unless asked)."""
+    state = SystemState.from_master(master.system_state())
+    types = master.topic_types()
+    built = build_graph(state, GraphOptions(hide_debug=not show_debug))
+    return {
+        "nodes": sorted(built.nodes),
+        "topics": [{"name": name, "type": types.get(name, "")} for name in sorted(built.topics)],
+        "edges": [{"from": a, "to": b} for a, b, _ in sorted(built.edges)],
+    }
+
+
+def topics(master: Master) -> Json:
+    """Every topic the master knows, with its type, sorted by name."""
+    return {"topics": [{"name": name, "type": kind} for name, kind in sorted(master.topic_types().items())]}
+
+
+def plot_fields(master: Master, spec: Optional[str]) -> Json:
+    """The numeric fields an rqt_plot argument names: topic, type, label, and the steps to read.
+
+    `spec` is what a user types after rqt_plot: paths separated by spaces or commas, `x:y`
+    shorthands, names relative to / (the page has no namespace)."""
+    if not spec or not spec.strip():
+        raise ApiError("give a field to plot, like /turtle1/pose/x:y")
+    if len(spec) > MAX_PLOT_SPEC:
+        raise ApiError("a plot request of %d characters is too long (at most %d)" % (len(spec), MAX_PLOT_SPEC))
+    try:
+        paths = ["/" + path.lstrip("/") for path in expand_shorthand(spec.split())]
+        for path in paths:
+            parse_steps(path)
+        types = dict(master.topic_types())
+        by_topic = fields_of(paths, types)
+    except PlotPathError as err:
+        raise ApiError(str(err))
+    fields: List[Json] = []
+    for topic, found in by_topic.items():
+        for field in found:
+            fields.append({"topic": topic, "type": types[topic], "label": field.label,
+                           "steps": [[step.name, step.index] for step in field.steps]})
+    if len(fields) > MAX_PLOT_FIELDS:
+        raise ApiError("%s names %d numbers; plot at most %d at once" % (spec.strip(), len(fields), MAX_PLOT_FIELDS))
+    return {"fields": fields}

@@ -1,0 +1,90 @@
+"""course_web.introspect: the answers behind /api/graph, /api/topics and /api/plot, from a fake master."""
+from __future__ import annotations
+
+import pytest
+from hypothesis import given, settings, strategies as st
+
+from course_web import introspect
+
+STATE = [
+    [["/turtle1/pose", ["/turtlesim"]], ["/rosout", ["/turtlesim", "/teleop"]], ["/turtle1/cmd_vel", ["/teleop"]],
+     ["/rosout_agg", ["/rosout"]]],
+    [["/turtle1/cmd_vel", ["/turtlesim"]], ["/rosout", ["/rosout"]]],
+    [],
+]
+TYPES = {"/turtle1/pose": "turtlesim/Pose", "/turtle1/cmd_vel": "geometry_msgs/Twist",
+         "/rosout": "rosgraph_msgs/Log", "/rosout_agg": "rosgraph_msgs/Log",
+         "/joint_states": "sensor_msgs/JointState", "/turtlesim/image": "sensor_msgs/Image"}
+
+
+class FakeMaster:
+    def system_state(self):
+        return STATE
+
+    def topic_types(self):
+        return dict(TYPES)
+
+
+def test_graph_is_rqt_graphs_default_view():
+    answer = introspect.graph(FakeMaster())
+    assert answer["nodes"] == ["/teleop", "/turtlesim"]
+    assert answer["topics"] == [{"name": "/turtle1/cmd_vel", "type": "geometry_msgs/Twist"},
+                                {"name": "/turtle1/pose", "type": "turtlesim/Pose"}]
+    assert {(e["from"], e["to"]) for e in answer["edges"]} == {
+        ("/teleop", "/turtle1/cmd_vel"), ("/turtle1/cmd_vel", "/turtlesim"), ("/turtlesim", "/turtle1/pose")}
+
+
+def test_graph_shows_rosout_when_asked():
+    answer = introspect.graph(FakeMaster(), show_debug=True)
+    assert "/rosout" in answer["nodes"] and {"name": "/rosout", "type": "rosgraph_msgs/Log"} in answer["topics"]
+
+
+def test_topics_are_sorted_with_their_types():
+    names = [t["name"] for t in introspect.topics(FakeMaster())["topics"]]
+    assert names == sorted(TYPES)
+
+
+def test_plot_expands_rqt_plots_shorthand():
+    fields = introspect.plot_fields(FakeMaster(), "/turtle1/pose/x:y")["fields"]
+    assert [(f["topic"], f["label"], f["steps"]) for f in fields] == [
+        ("/turtle1/pose", "/turtle1/pose/x", [["x", None]]), ("/turtle1/pose", "/turtle1/pose/y", [["y", None]])]
+    assert fields[0]["type"] == "turtlesim/Pose"
+
+
+def test_plot_takes_several_paths_relative_names_and_indexes():
+    fields = introspect.plot_fields(FakeMaster(), "turtle1/cmd_vel/linear/x, /joint_states/position[1]")["fields"]
+    assert [f["label"] for f in fields] == ["/turtle1/cmd_vel/linear/x", "/joint_states/position[1]"]
+    assert fields[1]["steps"] == [["position", 1]]
+
+
+def test_a_whole_message_means_its_numbers():
+    labels = [f["label"] for f in introspect.plot_fields(FakeMaster(), "/turtle1/pose")["fields"]]
+    assert labels == ["/turtle1/pose/%s" % n for n in ("x", "y", "theta", "linear_velocity", "angular_velocity")]
+
+
+@pytest.mark.parametrize("spec, complaint", [
+    ("", "give a field"),
+    ("   ", "give a field"),
+    ("/nowhere/x", "does not exist"),
+    ("/turtle1/pose/z", "has no field z"),
+    ("/rosout/msg", "not numeric"),
+    ("/joint_states/position", "variable-size array"),
+    ("/turtle1/pose/x[", "not a field name"),
+    ("x:y", "must start with a topic"),
+    ("/turtle1/pose/x " * 200, "too long"),
+])
+def test_bad_plot_requests_say_why(spec, complaint):
+    with pytest.raises(introspect.ApiError, match=complaint) as raised:
+        introspect.plot_fields(FakeMaster(), spec)
+    assert raised.value.status == 400
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.text(max_size=120))
+def test_any_plot_text_gives_fields_or_an_api_error(spec):
+    try:
+        answer = introspect.plot_fields(FakeMaster(), spec)
+    except introspect.ApiError as err:
+        assert str(err)
+    else:
+        assert 0 < len(answer["fields"]) <= introspect.MAX_PLOT_FIELDS

@@ -1,0 +1,23 @@
+// The server's JSON questions (/api/graph, /api/topics, /api/plot): answers, or an Error
+// carrying the server's one-line reason.
+export async function ask(question, params = {}) {
+  const query = new URLSearchParams(params);
+  const token = new URLSearchParams(window.location.search).get('token');
+  if (token) query.set('token', token);
+  const reply = await fetch('/api/' + question + (query.toString() ? '?' + query : ''), {cache: 'no-store'});
+  const answer = await reply.json().catch(() => ({error: 'the server answered ' + reply.status}));
+  if (!reply.ok || answer.error) throw new Error(answer.error || ('the server answered ' + reply.status));
+  return answer;
+}
+
+// Calls `refresh` now and every `periodMs` while the page is visible; errors go to `onError`.
+export function every(periodMs, refresh, onError) {
+  let busy = false;
+  async function tick() {
+    if (busy || document.hidden) return;
+    busy = true;
+    try { await refresh(); } catch (error) { onError(error); } finally { busy = false; }
+  }
+  tick();
+  return setInterval(tick, periodMs);
+}

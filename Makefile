@@ -40,7 +40,7 @@ autograder: build
 
 bench: build
 	@$(ROSENV) cd $(ROOT) && python3 bench/turtlesim_bench.py && python3 bench/relay_bench.py \
-	  && python3 bench/sim_bench.py
+	  && python3 bench/sim_bench.py && python3 bench/web_bench.py --simulator
 
 # The grader's trust and speed: the reference graded 20 times, then a class of 30 (about 45 min).
 bench-grade: build

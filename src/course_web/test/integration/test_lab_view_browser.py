@@ -233,6 +233,45 @@ def test_the_tf_tree_shows_static_and_moving_frames(browser, lab, client_class, 
         lab.master.stop_node(static)
 
 
+PAGE_LOGIC = """
+const done = arguments[arguments.length - 1];
+Promise.all([import('/js/plot_panel.js'), import('/js/graph_panel.js'), import('/js/view3d_panel.js')])
+  .then(([plot, graph, view3d]) => {
+    const v = {target: {x: 1, y: 2, z: 0}, azimuth: 0, elevation: 0.2, distance: 4};
+    const ranks = graph.layers(['a', 'b', 'c', 'd'],
+      [{from: 'a', to: 'b'}, {from: 'b', to: 'c'}, {from: 'c', to: 'a'}, {from: 'c', to: 'd'}, {from: 'x', to: 'a'}]);
+    done({
+      values: [plot.valueAt({x: 1.5}, [['x', null]]), plot.valueAt({p: [1, 2, 3]}, [['p', 2]]),
+               plot.valueAt({p: [1]}, [['p', 5]]), plot.valueAt({d: 'AQID'}, [['d', 1]]),
+               plot.valueAt({t: {secs: 3, nsecs: 500000000}}, [['t', null]]), plot.valueAt({b: true}, [['b', null]]),
+               plot.valueAt({x: null}, [['x', null]]), plot.valueAt({x: 'text'}, [['x', null]]),
+               plot.valueAt({}, [['a', null], ['b', null]])],
+      ranks: Object.fromEntries(ranks),
+      orbit: view3d.dragged(v, 100, 0, false), tilt: view3d.dragged(v, 0, 1e6, false),
+      pan: view3d.dragged(v, 100, 0, true), zoom: view3d.zoomed(v, -1), original: v,
+    });
+  }).catch((error) => done({error: String(error)}));
+"""
+
+
+def test_the_pages_own_logic(browser, lab, open_page):
+    """The page's pure functions, run in the browser: field values as rqt_plot reads them, the graph's
+    layers with a cycle, and the orbit maths of the 3-D view."""
+    open_page(browser, lab)
+    result = browser.execute_async_script(PAGE_LOGIC)
+    assert "error" not in result, result
+    assert result["values"] == [1.5, 3, None, 2, 3.5, 1, None, None, None]
+    ranks = result["ranks"]
+    assert sorted(ranks) == ["a", "b", "c", "d"] and all(0 <= r <= 3 for r in ranks.values())
+    assert ranks["b"] == ranks["a"] + 1 and ranks["c"] == ranks["b"] + 1 and ranks["d"] == ranks["c"] + 1
+    assert result["orbit"]["azimuth"] == pytest.approx(-1.0) and result["orbit"]["target"] == result["original"]["target"]
+    assert result["tilt"]["elevation"] == pytest.approx(1.5)  # clamped, never over the top
+    pan = result["pan"]
+    assert pan["target"]["x"] == pytest.approx(1.0) and pan["target"]["y"] < 2.0  # the ground follows the pointer
+    assert pan["azimuth"] == 0 and result["zoom"]["distance"] == pytest.approx(4 / 1.15)
+    assert result["original"]["target"] == {"x": 1, "y": 2, "z": 0}  # the functions do not change their input
+
+
 def save_and_check(driver, name):
     """A screenshot of the page and one of the canvas in the artifact folder, checked for content:
     not blank, and the canvas mostly turtlesim's background colour."""

@@ -1,13 +1,19 @@
 """lab_view against turtlesim: the rosbridge ops work, bad requests get errors to their sender
-only, 20 viewers are served fairly while one stalls, and the token guards a wider address."""
+only, 20 viewers are served fairly while one stalls, a latched message reaches a late client,
+the page's JSON questions (/api/...) answer or say why, and the token guards a wider address."""
 from __future__ import annotations
 
 import asyncio
+import json
 import re
 import time
+import urllib.error
+import urllib.parse
+import urllib.request
 
 from course_testkit.isolation import free_port
 from course_testkit.master import system_state
+from course_testkit.nodes import find_executable
 from course_testkit.waiting import wait_for
 
 VIEWERS = 20
@@ -149,7 +155,8 @@ def test_twenty_viewers_are_served_fairly_while_one_stalls(lab, client_class):
 
 def test_a_wider_address_requires_the_token(lab, client_class):
     port = free_port()
-    server = lab.start_server(port, "--address", "0.0.0.0")
+    # A node name of its own: a second /lab_view would make the master shut the lab's one down.
+    server = lab.start_server(port, "--address", "0.0.0.0", "__name:=lab_view_guarded")
     try:
         token = re.search(r"\?token=([A-Za-z0-9_-]+)", server.output()).group(1)
         assert lab.status("/", port) == 403
@@ -157,6 +164,8 @@ def test_a_wider_address_requires_the_token(lab, client_class):
         assert lab.status("/?token=wrong", port) == 403
         assert lab.status("/?token=%s" % token, port) == 200
         assert lab.status("/js/main.js", port, Cookie="course_web_token=%s" % token) == 200
+        assert lab.status("/api/topics", port) == 403
+        assert lab.status("/api/topics?token=%s" % token, port) == 200
 
         async def scenario():
             refused = await client_class.connect(lab.ws_url(port))
@@ -170,3 +179,56 @@ def test_a_wider_address_requires_the_token(lab, client_class):
         asyncio.run(scenario())
     finally:
         lab.master.stop_node(server)
+
+
+def api(lab, question, **params):
+    """(status, answer) of GET /api/<question>?params."""
+    url = lab.url("/api/%s%s" % (question, "?" + urllib.parse.urlencode(params) if params else ""))
+    try:
+        with urllib.request.urlopen(url, timeout=TIMEOUT_S) as reply:
+            return reply.status, json.loads(reply.read())
+    except urllib.error.HTTPError as err:
+        return err.code, json.loads(err.read() or b"{}")
+
+
+def test_the_api_answers_the_pages_questions(lab):
+    status, answer = api(lab, "topics")
+    assert status == 200 and {"name": "/turtle1/pose", "type": "turtlesim/Pose"} in answer["topics"]
+    status, answer = api(lab, "graph")
+    assert status == 200 and "/turtlesim" in answer["nodes"], answer
+    assert {"from": "/turtlesim", "to": "/turtle1/pose"} in answer["edges"]
+    status, answer = api(lab, "plot", path="/turtle1/pose/x:theta")
+    assert status == 200 and [f["label"] for f in answer["fields"]] == ["/turtle1/pose/x", "/turtle1/pose/theta"]
+
+
+def test_bad_api_questions_say_why_and_the_server_stays_up(lab):
+    for params, said in (({}, "give a field"), ({"path": "/turtle1/pose/nope"}, "has no field nope"),
+                         ({"path": "/nowhere/x"}, "does not exist"), ({"path": "\x00\u00ff" * 3}, ""),
+                         ({"path": "/turtle1/pose/x" * 500}, "too long"), ({"path": "/a/b[99999999999999999999]"}, "")):
+        status, answer = api(lab, "plot", **params)
+        assert status == 400 and said in answer["error"], (params, status, answer)
+    assert lab.status("/api/unknown") == 404
+    assert api(lab, "topics")[0] == 200
+
+
+def test_a_latched_message_reaches_a_client_that_joins_a_shared_feed_late(lab, client_class):
+    latched = lab.master.start([find_executable("tf2_ros", "static_transform_publisher"),
+                                "0", "0", "1", "0", "0", "0", "world", "late_frame"], "latched_tf")
+
+    def is_static(message):
+        return message.get("topic") == "/tf_static" and any(
+            t["child_frame_id"] == "late_frame" for t in message["msg"]["transforms"])
+
+    async def scenario():
+        first = await client_class.connect(lab.ws_url())
+        first.send(op="subscribe", topic="/tf_static", type="tf2_msgs/TFMessage")
+        await first.expect(is_static, timeout=TIMEOUT_S, what="the static transform (first client)")
+        second = await client_class.connect(lab.ws_url())  # the feed exists: rospy will not resend
+        second.send(op="subscribe", topic="/tf_static", type="tf2_msgs/TFMessage")
+        await second.expect(is_static, timeout=TIMEOUT_S, what="the static transform (late client)")
+        first.close()
+        second.close()
+    try:
+        asyncio.run(scenario())
+    finally:
+        lab.master.stop_node(latched)

@@ -1,0 +1,170 @@
+#!/usr/bin/env python3
+"""The lab in a browser, measured in a real browser (headless Debian chromium through selenium).
+
+turtlesim (its canvas published at 30 fps) and lab_view run against a private master; one page
+is open. Printed, against the lab page's targets:
+- the turtlesim canvas's frame rate as the page draws it (target >= 20 fps);
+- command-to-pixel latency: from an arrow key pressed in the page to the first canvas pixel that
+  changes because the turtle turned (the key's Twist through the websocket, lab_view, turtlesim's
+  tick, its next image, JPEG, the websocket and the page's decode), p50 and p99 (target p50 <= 100 ms);
+- lab_view's CPU with that one viewer, in % of one core (target <= 15%).
+With --simulator it also opens 003's RRBot world and reports the 3-D view's frame rate,
+lab_view's CPU while it streams the free camera, and the simulation's real-time factor meanwhile. Run from a sourced workspace:
+    python3 bench/web_bench.py [--seconds 10] [--presses 40] [--simulator]
+"""
+from __future__ import annotations
+
+import argparse
+import statistics
+import sys
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from rosenv import cpu_seconds, private_master  # noqa: E402
+
+from course_testkit.browser import chromium  # noqa: E402
+from course_testkit.isolation import free_port  # noqa: E402
+from course_testkit.nodes import find_executable  # noqa: E402
+from course_testkit.waiting import wait_for  # noqa: E402
+
+TARGET_FPS = 20.0
+TARGET_P50_MS = 100.0
+TARGET_CPU = 15.0
+IMAGE_RATE = 30
+
+# In the page: wait until the canvas has not changed for `still` ms (the turtle stopped turning;
+# turtlesim obeys a Twist for 1 s), press the key, then time until a drawn frame differs.
+PRESS_AND_TIME = """
+const [key, stillMs, limitMs] = [arguments[0], arguments[1], arguments[2]];
+const done = arguments[arguments.length - 1];
+const canvas = document.getElementById('turtle-canvas');
+const context = canvas.getContext('2d');
+const pixels = () => context.getImageData(0, 0, canvas.width, canvas.height).data;
+const same = (a, b) => { for (let i = 0; i < a.length; i += 4) if (a[i] !== b[i] || a[i + 1] !== b[i + 1] || a[i + 2] !== b[i + 2]) return false; return true; };
+let reference = pixels(), stableSince = performance.now(), frames = canvas.dataset.frames, pressed = null;
+const started = performance.now();
+function poll() {
+  const now = performance.now();
+  if (now - started > limitMs) { done({error: pressed === null ? 'the canvas never stood still' : 'no change after the key'}); return; }
+  if (canvas.dataset.frames !== frames) {
+    frames = canvas.dataset.frames;
+    const current = pixels();
+    if (!same(current, reference)) {
+      if (pressed !== null) { done({latency: now - pressed}); return; }
+      reference = current; stableSince = now;
+    }
+  }
+  if (pressed === null && now - stableSince >= stillMs) {
+    pressed = performance.now();
+    document.body.dispatchEvent(new KeyboardEvent('keydown', {key, bubbles: true}));
+  }
+  setTimeout(poll, 1);
+}
+poll();
+"""
+
+
+def percentile(values, q):
+    values = sorted(values)
+    return values[min(len(values) - 1, int(round(q / 100.0 * (len(values) - 1))))]
+
+
+def frame_rate(driver, canvas_id, seconds):
+    read = "return Number(document.getElementById(arguments[0]).dataset.frames || 0)"
+    first, start = driver.execute_script(read, canvas_id), time.monotonic()
+    time.sleep(seconds)  # a measurement window, not a synchronisation
+    return (driver.execute_script(read, canvas_id) - first) / (time.monotonic() - start)
+
+
+def server_cpu(pid, seconds):
+    before, start = cpu_seconds(pid), time.monotonic()
+    time.sleep(seconds)
+    return 100.0 * (cpu_seconds(pid) - before) / (time.monotonic() - start)
+
+
+def mark(ok):
+    return "meets" if ok else "MISSES"
+
+
+def open_page(driver, port):
+    driver.get("http://127.0.0.1:%d/" % port)
+    if not wait_for(lambda: driver.execute_script(
+            "return document.getElementById('connection').dataset.state === 'open'"), 60):
+        raise SystemExit("the page did not connect")
+
+
+def turtle_part(master, args):
+    master.start([find_executable("turtlesim", "turtlesim_node"), "_image_rate:=%d" % IMAGE_RATE], "turtlesim")
+    port = free_port()
+    server = master.start([find_executable("course_web", "lab_view"), "--port", str(port)], "lab_view")
+    if not wait_for(lambda: "lab_view: open" in server.output(), 60):
+        raise SystemExit("lab_view did not start:\n" + server.output())
+    with chromium() as driver:
+        open_page(driver, port)
+        if not wait_for(lambda: driver.execute_script(
+                "return Number(document.getElementById('turtle-canvas').dataset.frames || 0)") > 30, 60):
+            raise SystemExit("the page drew no turtlesim frames")
+        fps = frame_rate(driver, "turtle-canvas", args.seconds)
+        cpu = server_cpu(server.proc.pid, args.seconds)
+        latencies = []
+        for press in range(args.presses):
+            key = "ArrowLeft" if press % 2 == 0 else "ArrowRight"  # turn on the spot, never into a wall
+            result = driver.execute_async_script(PRESS_AND_TIME, key, 1300, 15000)
+            if "error" in result:
+                raise SystemExit("press %d: %s" % (press + 1, result["error"]))
+            latencies.append(result["latency"])
+    p50, p99 = percentile(latencies, 50), percentile(latencies, 99)
+    print("turtlesim canvas in the browser: %.1f fps (target >= %.0f: %s)" % (fps, TARGET_FPS, mark(fps >= TARGET_FPS)))
+    print("command-to-pixel latency over %d key presses: p50 %.1f ms, p99 %.1f ms, mean %.1f ms "
+          "(target p50 <= %.0f ms: %s)" % (len(latencies), p50, p99, statistics.mean(latencies), TARGET_P50_MS,
+                                          mark(p50 <= TARGET_P50_MS)))
+    print("lab_view CPU with one viewer: %.1f%% of one core (target <= %.0f%%: %s)"
+          % (cpu, TARGET_CPU, mark(cpu <= TARGET_CPU)))
+
+
+def simulator_part(master, args):
+    master.start(["roslaunch", "rrbot_gazebo", "rrbot_world.launch", "gui:=false"], "rrbot_world")
+    port = free_port()
+    server = master.start([find_executable("course_web", "lab_view"), "--port", str(port),
+                           "__name:=lab_view_sim"], "lab_view_sim")
+    if not wait_for(lambda: "lab_view: open" in server.output(), 60):
+        raise SystemExit("lab_view did not start:\n" + server.output())
+    with chromium() as driver:
+        open_page(driver, port)
+        if not wait_for(lambda: driver.execute_script(
+                "return Number(document.getElementById('view3d-canvas').dataset.frames || 0)") > 20, 120):
+            raise SystemExit("the page drew no 3-D view")
+        fps = frame_rate(driver, "view3d-canvas", args.seconds)
+        cpu = server_cpu(server.proc.pid, args.seconds)
+        rtf = real_time_factor(args.seconds)
+    print("3-D view (free camera, 480x360, 20 Hz nominal) in the browser: %.1f fps; lab_view CPU %.1f%% of one "
+          "core; the simulation's real-time factor meanwhile %.2f" % (fps, cpu, rtf))
+
+
+def real_time_factor(seconds):
+    """Simulated seconds per wall second over a window, from /clock."""
+    import rospy
+    from rosgraph_msgs.msg import Clock
+    if not rospy.core.is_initialized():
+        rospy.init_node("web_bench", anonymous=True, disable_signals=True)
+    first, start = rospy.wait_for_message("/clock", Clock, 30).clock.to_sec(), time.monotonic()
+    time.sleep(seconds)
+    last, end = rospy.wait_for_message("/clock", Clock, 30).clock.to_sec(), time.monotonic()
+    return (last - first) / (end - start)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--seconds", type=float, default=10.0, help="length of the fps and CPU windows")
+    parser.add_argument("--presses", type=int, default=40, help="key presses timed")
+    parser.add_argument("--simulator", action="store_true", help="also measure the 3-D view in RRBot's world")
+    args = parser.parse_args()
+    with private_master() as master:
+        turtle_part(master, args)
+        if args.simulator:
+            simulator_part(master, args)
+
+
+if __name__ == "__main__":
+    main()

@@ -94,17 +94,28 @@ def open_page(driver, port):
         raise SystemExit("the page did not connect")
 
 
-def turtle_part(master, args):
-    master.start([find_executable("turtlesim", "turtlesim_node"), "_image_rate:=%d" % IMAGE_RATE], "turtlesim")
+def start_lab_view(master, name):
+    """lab_view (node `name`) on a free port, once it serves: (the process, the port)."""
     port = free_port()
-    server = master.start([find_executable("course_web", "lab_view"), "--port", str(port)], "lab_view")
+    server = master.start([find_executable("course_web", "lab_view"), "--port", str(port), "__name:=" + name], name)
     if not wait_for(lambda: "lab_view: open" in server.output(), 60):
         raise SystemExit("lab_view did not start:\n" + server.output())
+    return server, port
+
+
+def drawing(driver, port, canvas_id, frames, timeout):
+    """Open the page and wait until `canvas_id` has drawn `frames` pictures."""
+    open_page(driver, port)
+    if not wait_for(lambda: driver.execute_script(
+            "return Number(document.getElementById(arguments[0]).dataset.frames || 0)", canvas_id) > frames, timeout):
+        raise SystemExit("the page drew nothing on #" + canvas_id)
+
+
+def turtle_part(master, args):
+    master.start([find_executable("turtlesim", "turtlesim_node"), "_image_rate:=%d" % IMAGE_RATE], "turtlesim")
+    server, port = start_lab_view(master, "lab_view")
     with chromium() as driver:
-        open_page(driver, port)
-        if not wait_for(lambda: driver.execute_script(
-                "return Number(document.getElementById('turtle-canvas').dataset.frames || 0)") > 30, 60):
-            raise SystemExit("the page drew no turtlesim frames")
+        drawing(driver, port, "turtle-canvas", 30, 60)
         fps = frame_rate(driver, "turtle-canvas", args.seconds)
         cpu = server_cpu(server.proc.pid, args.seconds)
         latencies = []
@@ -125,16 +136,9 @@ def turtle_part(master, args):
 
 def simulator_part(master, args):
     master.start(["roslaunch", "rrbot_gazebo", "rrbot_world.launch", "gui:=false"], "rrbot_world")
-    port = free_port()
-    server = master.start([find_executable("course_web", "lab_view"), "--port", str(port),
-                           "__name:=lab_view_sim"], "lab_view_sim")
-    if not wait_for(lambda: "lab_view: open" in server.output(), 60):
-        raise SystemExit("lab_view did not start:\n" + server.output())
+    server, port = start_lab_view(master, "lab_view_sim")
     with chromium() as driver:
-        open_page(driver, port)
-        if not wait_for(lambda: driver.execute_script(
-                "return Number(document.getElementById('view3d-canvas').dataset.frames || 0)") > 20, 120):
-            raise SystemExit("the page drew no 3-D view")
+        drawing(driver, port, "view3d-canvas", 20, 120)
         fps = frame_rate(driver, "view3d-canvas", args.seconds)
         cpu = server_cpu(server.proc.pid, args.seconds)
         rtf = real_time_factor(args.seconds)

@@ -58,12 +58,14 @@ def plot_fields(master: Master, spec: Optional[str]) -> Json:
 
     `spec` is what a user types after rqt_plot: paths separated by spaces or commas, `x:y`
     shorthands, names relative to / (the page has no namespace)."""
-    if not spec or not spec.strip():
-        raise ApiError("give a field to plot, like /turtle1/pose/x:y")
+    if spec is None:
+        spec = ""
     if len(spec) > MAX_PLOT_SPEC:
         raise ApiError("a plot request of %d characters is too long (at most %d)" % (len(spec), MAX_PLOT_SPEC))
     try:
         paths = ["/" + path.lstrip("/") for path in expand_shorthand(spec.split())]
+        if not paths:  # empty, blank, or only separators
+            raise ApiError("give a field to plot, like /turtle1/pose/x:y")
         for path in paths:
             parse_steps(path)
         types = dict(master.topic_types())

@@ -65,6 +65,7 @@ def test_a_whole_message_means_its_numbers():
 @pytest.mark.parametrize("spec, complaint", [
     ("", "give a field"),
     ("   ", "give a field"),
+    (" , ,", "give a field"),
     ("/nowhere/x", "does not exist"),
     ("/turtle1/pose/z", "has no field z"),
     ("/rosout/msg", "not numeric"),

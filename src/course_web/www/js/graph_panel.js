@@ -3,10 +3,11 @@
 import {ask, every} from './api.js';
 
 const SVG = 'http://www.w3.org/2000/svg';
-const CHAR_W = 7;
+const CHAR_W = 7.5;
 const ROW_H = 34;
 const COL_GAP = 60;
 const PAD = 10;
+const LOOP_DROP = 28;  // how far below the boxes an edge closing a cycle runs
 
 // Layers: longest path from the sources, with the edges that close a cycle left out.
 export function layers(names, edges) {
@@ -72,7 +73,7 @@ function draw(svg, graph) {
   });
   svg.replaceChildren();
   svg.setAttribute('width', String(Math.max(x, 200)));
-  svg.setAttribute('height', String(Math.max(height, 60)));
+  svg.setAttribute('height', String(Math.max(height + LOOP_DROP, 60)));
   const defs = element('defs', {}, svg);
   const marker = element('marker', {id: 'arrow', viewBox: '0 0 10 10', refX: '10', refY: '5', markerWidth: '7',
     markerHeight: '7', orient: 'auto-start-reverse'}, defs);
@@ -81,11 +82,18 @@ function draw(svg, graph) {
     const a = position.get(edge.from);
     const b = position.get(edge.to);
     if (!a || !b) continue;
-    const x1 = a.x + a.w;
-    const x2 = b.x;
-    const bend = Math.max(30, Math.abs(x2 - x1) / 2);
-    element('path', {class: 'edge', d: `M ${x1} ${a.y} C ${x1 + bend} ${a.y}, ${x2 - bend} ${b.y}, ${x2} ${b.y}`,
-      'marker-end': 'url(#arrow)', 'data-from': edge.from, 'data-to': edge.to}, svg);
+    let d;
+    if (b.x > a.x) {  // left to right: from a's right side to b's left side
+      const x1 = a.x + a.w;
+      const x2 = b.x;
+      const bend = Math.max(30, (x2 - x1) / 2);
+      d = `M ${x1} ${a.y} C ${x1 + bend} ${a.y}, ${x2 - bend} ${b.y}, ${x2} ${b.y}`;
+    } else {  // an edge that closes a cycle: under the boxes, from a's bottom to b's bottom
+      const [x1, y1, x2, y2] = [a.x + a.w / 2, a.y + ROW_H / 2 - 5, b.x + b.w / 2, b.y + ROW_H / 2 - 5];
+      const low = Math.max(y1, y2) + LOOP_DROP;
+      d = `M ${x1} ${y1} C ${x1} ${low}, ${x2} ${low}, ${x2} ${y2}`;
+    }
+    element('path', {class: 'edge', d, 'marker-end': 'url(#arrow)', 'data-from': edge.from, 'data-to': edge.to}, svg);
   }
   for (const [name, at] of position) {
     const group = element('g', {class: 'vertex ' + kinds.get(name), 'data-name': name}, svg);

@@ -18,6 +18,9 @@ from typing import Any, Callable, Dict, Hashable, Optional, Set, Tuple
 from course_web.outbox import Outbox, Payload
 
 DEFAULT_MAX_MESSAGE_BYTES = 10 * 1024 * 1024
+MAX_CALLS_IN_FLIGHT = 8
+"""Service calls one client may have waiting for their replies; more are refused, so a client
+calling a service that never answers holds up its own calls only."""
 IMAGE_COMPRESSIONS = ("jpeg", "png")
 PLAIN_COMPRESSIONS = ("none", "", None)
 
@@ -116,6 +119,8 @@ class Session:
         # is still being handled): one at a time, and nothing is handled after close().
         self._lock = threading.Lock()
         self.closed = False
+        self._calls_lock = threading.Lock()  # done() comes from the bridge's threads
+        self.calls_in_flight = 0
 
     # -- replies ---------------------------------------------------------------------------
     def reply(self, payload: Payload) -> None:
@@ -233,11 +238,30 @@ class Session:
         if not isinstance(args, (dict, list)):
             raise RequestError("call_service: \"args\" must be an object or a list")
 
+        with self._calls_lock:
+            if self.calls_in_flight >= MAX_CALLS_IN_FLIGHT:
+                raise RequestError("call_service %s: %d calls of this client are still waiting for their "
+                                   "replies; wait for one before calling again" % (service, self.calls_in_flight))
+            self.calls_in_flight += 1
+        answered = threading.Event()
+
         def done(result: bool, values: Any) -> None:
+            if answered.is_set():
+                return  # a bridge that answers twice: the first answer stands
+            answered.set()
+            with self._calls_lock:
+                self.calls_in_flight -= 1
             if not result:
                 self.error("call_service %s: %s" % (service, values), request_id)
             self.reply(service_response(service, request_id, result, values))
-        self.bridge.call_service(service, type_name, args, done)
+        try:
+            self.bridge.call_service(service, type_name, args, done)
+        except BaseException:
+            if not answered.is_set():
+                answered.set()
+                with self._calls_lock:
+                    self.calls_in_flight -= 1
+            raise
 
     HANDLERS = {"advertise": _advertise, "unadvertise": _unadvertise, "publish": _publish,
                 "subscribe": _subscribe, "unsubscribe": _unsubscribe, "call_service": _call_service}

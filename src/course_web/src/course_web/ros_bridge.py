@@ -3,14 +3,13 @@
 However many clients watch a topic, the node holds one rospy.Subscriber for it and turns each
 message into its publish frame (or compressed picture) once, then hands the same payload to
 every client's outbox: the ROS callback never waits for a client. Publishers are shared the
-same way. Service calls run on a small thread pool, so a slow service delays only its caller's
-reply. Types come from the request, or from the master when the request leaves them out, and a
+same way. Each service call runs on a thread of its own (a client may have only a few waiting, see
+course_web.protocol), so a service that never answers delays only its caller's reply. Types come from the request, or from the master when the request leaves them out, and a
 request that contradicts the master (another type on the same topic) is refused, because rospy
 would otherwise connect nothing and say nothing.
 """
 from __future__ import annotations
 
-import concurrent.futures
 import threading
 from typing import Any, Dict, Hashable, Optional, Set, Tuple, Type
 
@@ -26,7 +25,6 @@ from course_web.protocol import Bridge, Deliver, RequestError, ServiceDone, publ
 
 IMAGE_TYPE = "sensor_msgs/Image"
 CALLER_ID = "/course_web"
-SERVICE_WORKERS = 8
 SUBSCRIBER_QUEUE = 10
 
 
@@ -98,11 +96,10 @@ class _Feed:
 class RosBridge(Bridge):
     """The Bridge of course_web.protocol, wired to rospy (the node must be initialised)."""
 
-    def __init__(self, workers: int = SERVICE_WORKERS) -> None:
+    def __init__(self) -> None:
         self.lock = threading.Lock()
         self.publishers: Dict[str, _Publisher] = {}
         self.feeds: Dict[str, _Feed] = {}
-        self.calls = concurrent.futures.ThreadPoolExecutor(workers, thread_name_prefix="lab_view-call")
 
     def topic_type(self, topic: str) -> Optional[str]:
         """The topic's type as the master knows it (None: nobody publishes or subscribes it)."""
@@ -193,7 +190,8 @@ class RosBridge(Bridge):
 
     # -- services -------------------------------------------------------------------------
     def call_service(self, service: str, type_name: Optional[str], args: Any, done: ServiceDone) -> None:
-        self.calls.submit(self._call, service, type_name, args, done)
+        threading.Thread(target=self._call, args=(service, type_name, args, done), daemon=True,
+                         name="lab_view-call %s" % service[:40]).start()
 
     def _call(self, service: str, type_name: Optional[str], args: Any, done: ServiceDone) -> None:
         try:
@@ -224,7 +222,7 @@ class RosBridge(Bridge):
         return message_to_json(response)
 
     def shutdown(self) -> None:
-        self.calls.shutdown(wait=False)
+        """Nothing to wait for: a call still running is on a daemon thread."""
 
 
 class RosMaster:

@@ -8,6 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from course_web.outbox import Outbox
+from course_web import protocol
 from course_web.protocol import Bridge, RequestError, Session, publish_frame
 
 
@@ -165,3 +166,32 @@ def test_a_failure_inside_the_bridge_becomes_an_error_not_a_dead_session(session
     assert "master went away" in only_error(session, "s")
     session.handle('{"op": "advertise", "topic": "/chatter", "type": "std_msgs/String"}')
     assert replies(session) == []
+
+
+class SlowBridge(FakeBridge):
+    """Keeps every call's done() for the test to answer later (a service that does not answer yet)."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.pending = []
+
+    def call_service(self, service, type_name, args, done):
+        self.pending.append(done)
+
+
+def test_a_client_waits_for_its_own_slow_calls_only():
+    slow = SlowBridge()
+    mine = Session("mine", slow, Outbox())
+    other = Session("other", slow, Outbox())
+    for n in range(protocol.MAX_CALLS_IN_FLIGHT):
+        mine.handle(json.dumps({"op": "call_service", "id": "c%d" % n, "service": "/slow"}))
+    assert len(slow.pending) == protocol.MAX_CALLS_IN_FLIGHT and not replies(mine)
+    mine.handle(json.dumps({"op": "call_service", "id": "one-too-many", "service": "/slow"}))
+    assert "still waiting" in only_error(mine, "one-too-many")
+    other.handle(json.dumps({"op": "call_service", "id": "theirs", "service": "/slow"}))
+    assert len(slow.pending) == protocol.MAX_CALLS_IN_FLIGHT + 1  # another client is not held up
+    slow.pending[0](True, {})
+    slow.pending[0](True, {})  # a second answer to the same call is ignored
+    assert [(m["op"], m["id"]) for m in replies(mine)] == [("service_response", "c0")]
+    mine.handle(json.dumps({"op": "call_service", "id": "again", "service": "/slow"}))
+    assert len(slow.pending) == protocol.MAX_CALLS_IN_FLIGHT + 2 and not replies(mine)

@@ -8,14 +8,20 @@ is open. Printed, against the lab page's targets:
   changes because the turtle turned (the key's Twist through the websocket, lab_view, turtlesim's
   tick, its next image, JPEG, the websocket and the page's decode), p50 and p99 (target p50 <= 100 ms);
 - lab_view's CPU with that one viewer, in % of one core (target <= 15%).
+Then --viewers N (default 20) websocket viewers join, each taking the poses and the canvas:
+turtlesim's own pose rate (62.5 Hz when it keeps its pace) and what each viewer gets.
 With --simulator it also opens 003's RRBot world and reports the 3-D view's frame rate,
-lab_view's CPU while it streams the free camera, and the simulation's real-time factor meanwhile. Run from a sourced workspace:
-    python3 bench/web_bench.py [--seconds 10] [--presses 40] [--simulator]
+lab_view's CPU while it streams the free camera, and the simulation's real-time factor, with the
+page alone and with the N viewers on the free camera too. Run from a sourced workspace:
+    python3 bench/web_bench.py [--seconds 10] [--presses 40] [--viewers 20] [--simulator]
 """
 from __future__ import annotations
 
 import argparse
+import asyncio
+import json
 import statistics
+import threading
 import sys
 import time
 from pathlib import Path
@@ -111,6 +117,77 @@ def drawing(driver, port, canvas_id, frames, timeout):
         raise SystemExit("the page drew nothing on #" + canvas_id)
 
 
+def crowd(port, subscriptions, count, seconds):
+    """`count` websocket viewers, each subscribed to `subscriptions` for `seconds`: per viewer, the
+    messages received per second on each topic."""
+    from tornado.websocket import websocket_connect
+
+    async def viewer():
+        connection = await websocket_connect("ws://127.0.0.1:%d/websocket" % port, max_message_size=1 << 26)
+        for topic, extra in subscriptions:
+            connection.write_message(json.dumps(dict(op="subscribe", topic=topic, **extra)))
+        got = {topic: 0 for topic, _ in subscriptions}
+        deadline = time.monotonic() + seconds
+        while time.monotonic() < deadline:
+            try:
+                message = await asyncio.wait_for(connection.read_message(), deadline - time.monotonic())
+            except asyncio.TimeoutError:
+                break
+            if message is None:
+                break
+            if isinstance(message, bytes):  # an image frame: 4-byte header length, JSON header, picture
+                length = int.from_bytes(message[:4], "big")
+                topic = json.loads(message[4:4 + length])["topic"]
+            else:
+                topic = json.loads(message).get("topic")
+            if topic in got:
+                got[topic] += 1
+        connection.close()
+        return {topic: n / seconds for topic, n in got.items()}
+
+    async def everyone():
+        return await asyncio.gather(*(viewer() for _ in range(count)))
+    return asyncio.run(everyone())
+
+
+def topic_rate(topic, message_class, seconds):
+    """Messages per second on `topic`, as this process receives them (a rospy subscriber)."""
+    import rospy
+    if not rospy.core.is_initialized():
+        rospy.init_node("web_bench", anonymous=True, disable_signals=True)
+    stamps, lock = [], threading.Lock()
+
+    def count(_):
+        with lock:
+            stamps.append(time.monotonic())
+    subscriber = rospy.Subscriber(topic, message_class, count)
+    try:
+        wait_for(lambda: stamps, 30)
+        start = time.monotonic()
+        time.sleep(seconds)
+        with lock:
+            return sum(1 for t in stamps if t >= start) / (time.monotonic() - start)
+    finally:
+        subscriber.unregister()
+
+
+def spread(rates, topic):
+    values = [r[topic] for r in rates]
+    return "%.1f-%.1f" % (min(values), max(values))
+
+
+def crowd_with(port, subscriptions, args, measure):
+    """Run `measure()` while args.viewers viewers watch; (its result, their rates)."""
+    result = {}
+    watchers = threading.Thread(target=lambda: result.update(rates=crowd(port, subscriptions, args.viewers,
+                                                                         args.seconds + 4)))
+    watchers.start()
+    time.sleep(2)  # a measurement window inside the crowd's, not a synchronisation
+    value = measure()
+    watchers.join()
+    return value, result["rates"]
+
+
 def turtle_part(master, args):
     master.start([find_executable("turtlesim", "turtlesim_node"), "_image_rate:=%d" % IMAGE_RATE], "turtlesim")
     server, port = start_lab_view(master, "lab_view")
@@ -132,6 +209,13 @@ def turtle_part(master, args):
                                           mark(p50 <= TARGET_P50_MS)))
     print("lab_view CPU with one viewer: %.1f%% of one core (target <= %.0f%%: %s)"
           % (cpu, TARGET_CPU, mark(cpu <= TARGET_CPU)))
+    if args.viewers:
+        from turtlesim.msg import Pose
+        subscriptions = [("/turtle1/pose", {}), ("/turtlesim/image", {"compression": "jpeg", "queue_length": 1})]
+        pace, rates = crowd_with(port, subscriptions, args, lambda: topic_rate("/turtle1/pose", Pose, args.seconds))
+        print("with %d more viewers (poses and the canvas each): turtlesim's pose rate %.1f Hz (62.5 nominal); "
+              "per viewer, poses %s Hz, canvas %s fps" % (args.viewers, pace, spread(rates, "/turtle1/pose"),
+                                                         spread(rates, "/turtlesim/image")))
 
 
 def simulator_part(master, args):
@@ -142,8 +226,13 @@ def simulator_part(master, args):
         fps = frame_rate(driver, "view3d-canvas", args.seconds)
         cpu = server_cpu(server.proc.pid, args.seconds)
         rtf = real_time_factor(args.seconds)
-    print("3-D view (free camera, 480x360, 20 Hz nominal) in the browser: %.1f fps; lab_view CPU %.1f%% of one "
-          "core; the simulation's real-time factor meanwhile %.2f" % (fps, cpu, rtf))
+        print("3-D view (free camera, 480x360, 20 Hz nominal) in the browser: %.1f fps; lab_view CPU %.1f%% of one "
+              "core; the simulation's real-time factor meanwhile %.2f" % (fps, cpu, rtf))
+        if args.viewers:
+            subscriptions = [("/gazebo/free_camera/image_raw", {"compression": "jpeg", "queue_length": 1})]
+            rtf, rates = crowd_with(port, subscriptions, args, lambda: real_time_factor(args.seconds))
+            print("with %d more viewers of the free camera: each %s fps; real-time factor %.2f"
+                  % (args.viewers, spread(rates, "/gazebo/free_camera/image_raw"), rtf))
 
 
 def real_time_factor(seconds):
@@ -162,6 +251,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--seconds", type=float, default=10.0, help="length of the fps and CPU windows")
     parser.add_argument("--presses", type=int, default=40, help="key presses timed")
+    parser.add_argument("--viewers", type=int, default=20, help="websocket viewers in the crowd part (0: none)")
     parser.add_argument("--simulator", action="store_true", help="also measure the 3-D view in RRBot's world")
     args = parser.parse_args()
     with private_master() as master:

@@ -89,10 +89,10 @@ class Api(TokenGuard, tornado.web.RequestHandler):
     The master is asked on the request pool (XML-RPC blocks); a failure is a JSON {"error": ...}
     with a 4xx/5xx status, never an exception out of the handler."""
 
-    QUESTIONS: Dict[str, Callable[["Api", introspect.Master], Dict[str, Any]]] = {
-        "graph": lambda self, master: introspect.graph(master, self.get_query_argument("debug", "") == "true"),
-        "topics": lambda self, master: introspect.topics(master),
-        "plot": lambda self, master: introspect.plot_fields(master, self.get_query_argument("path", "")),
+    QUESTIONS: Dict[str, Callable[[introspect.Master, Dict[str, str]], Dict[str, Any]]] = {
+        "graph": lambda master, params: introspect.graph(master, params["debug"] == "true"),
+        "topics": lambda master, params: introspect.topics(master),
+        "plot": lambda master, params: introspect.plot_fields(master, params["path"]),
     }
 
     def initialize(self, settings_: Settings) -> None:
@@ -105,10 +105,15 @@ class Api(TokenGuard, tornado.web.RequestHandler):
         self.set_header("Cache-Control", "no-store")
         master = self.settings_.master
         try:
+            try:  # read here, on the loop's thread; tornado refuses arguments that are not UTF-8
+                params = {name: self.get_query_argument(name, "") for name in ("debug", "path")}
+            except tornado.web.HTTPError as err:
+                raise introspect.ApiError("the request's arguments are not valid UTF-8 text (%s)"
+                                          % (err.log_message or err.reason or err.status_code))
             if master is None:
                 raise introspect.ApiError("this server has no ROS master to ask", 503)
             answer = await IOLoop.current().run_in_executor(self.settings_.requests, self.QUESTIONS[question],
-                                                            self, master)
+                                                            master, params)
         except introspect.ApiError as err:
             self.set_status(err.status)
             answer = {"error": str(err)}

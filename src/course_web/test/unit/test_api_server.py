@@ -5,9 +5,11 @@ from __future__ import annotations
 import asyncio
 import json
 import socket
+import urllib.parse
 
 import tornado.httpclient
 import tornado.httpserver
+from hypothesis import given, settings, strategies as st
 
 from course_web import introspect
 from course_web.protocol import Bridge
@@ -80,3 +82,14 @@ def test_failures_are_json_errors_and_the_server_keeps_answering():
 def test_the_api_is_behind_the_token():
     answers = ask(FakeMaster(), ["/api/topics", "/api/topics?token=wrong", "/api/topics?token=sesame"], token="sesame")
     assert [status for status, _ in answers] == [403, 403, 200]
+
+
+@settings(max_examples=15, deadline=None)
+@given(st.lists(st.binary(max_size=40), min_size=1, max_size=40))
+def test_any_bytes_in_a_plot_request_get_an_answer_never_a_crash(values):
+    paths = ["/api/plot?path=" + urllib.parse.quote_from_bytes(value) for value in values] + ["/api/topics"]
+    answers = ask(FakeMaster(), paths)
+    for (status, answer), value in zip(answers, values):
+        assert status in (200, 400), (value, status, answer)
+        assert ("fields" in answer) if status == 200 else answer["error"]
+    assert answers[-1][0] == 200  # still answering

@@ -243,24 +243,27 @@ class Session:
                 raise RequestError("call_service %s: %d calls of this client are still waiting for their "
                                    "replies; wait for one before calling again" % (service, self.calls_in_flight))
             self.calls_in_flight += 1
-        answered = threading.Event()
+        settled = []
+
+        def settle() -> bool:
+            """Stop counting this call as waiting; True only the first time (a bridge may answer twice)."""
+            with self._calls_lock:
+                if settled:
+                    return False
+                settled.append(True)
+                self.calls_in_flight -= 1
+                return True
 
         def done(result: bool, values: Any) -> None:
-            if answered.is_set():
-                return  # a bridge that answers twice: the first answer stands
-            answered.set()
-            with self._calls_lock:
-                self.calls_in_flight -= 1
+            if not settle():
+                return  # the first answer stands
             if not result:
                 self.error("call_service %s: %s" % (service, values), request_id)
             self.reply(service_response(service, request_id, result, values))
         try:
             self.bridge.call_service(service, type_name, args, done)
         except BaseException:
-            if not answered.is_set():
-                answered.set()
-                with self._calls_lock:
-                    self.calls_in_flight -= 1
+            settle()
             raise
 
     HANDLERS = {"advertise": _advertise, "unadvertise": _unadvertise, "publish": _publish,

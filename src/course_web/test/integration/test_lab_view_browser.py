@@ -137,8 +137,9 @@ def test_the_console_shows_turtlesims_warning_and_filters_by_level(browser, lab,
 PLOT_COLOURS = {"C0": (0x1f, 0x77, 0xb4), "C1": (0xff, 0x7f, 0x0e)}
 
 
-def colour_pixels(image, colour, tolerance=40):
-    return int((np.abs(image.astype(int) - np.array(colour)).sum(axis=2) < tolerance).sum())
+def colour_rows(image, colour, tolerance=40):
+    """The rows of `image` with at least one pixel of `colour`."""
+    return np.nonzero((np.abs(image.astype(int) - np.array(colour)).sum(axis=2) < tolerance).any(axis=1))[0]
 
 
 def element_png(driver, element_id, name):
@@ -165,7 +166,7 @@ def test_the_plot_draws_the_turtles_pose(browser, lab, client_class, open_page):
                                     .get_attribute("data-samples") or 0) > samples + 20, TIMEOUT_S), "no new samples"
     plot = element_png(browser, "plot-canvas", "lab_view_plot")
     for name, colour in PLOT_COLOURS.items():
-        rows = np.nonzero((np.abs(plot.astype(int) - np.array(colour)).sum(axis=2) < 40).any(axis=1))[0]
+        rows = colour_rows(plot, colour)
         assert len(rows) > 40, "the %s line (%s) spans only %d rows of the plot" % (name, colour, len(rows))
 
 

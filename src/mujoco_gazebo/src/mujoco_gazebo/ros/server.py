@@ -6,7 +6,7 @@ from __future__ import annotations
 import os
 import threading
 import time
-from typing import Dict, List, Optional
+from typing import Callable, Dict, List, Optional
 
 import mujoco
 import rospy
@@ -226,15 +226,15 @@ class GazeboServer:
             self.link_states_pub.publish(LinkStates(name=names, pose=[pose_to_msg(p) for p in poses],
                                                     twist=[twist_to_msg(t) for t in twists]))
 
-    def run(self) -> None:
-        """Step the world in a thread of its own until shutdown. Not in the main thread: rospy runs
-        its SIGINT/SIGTERM handler there, and a handler that interrupts a publish (the loop
-        publishes /clock at 200 Hz) closes that publisher's queued connection under the lock the
-        interrupted publish holds: the node hung for ever on Ctrl-C. The main thread only waits."""
+    def run(self, wait: Callable[[], None]) -> None:
+        """Step the world in a thread of its own until `wait` returns (rospy has shut down), then
+        stop. Not in the main thread: Python runs signal handlers there, and one that shuts
+        rospy down inside an interrupted publish (the loop publishes /clock at 200 Hz) waits for
+        the lock that publish holds. The main thread only waits (see signals.py)."""
         physics = threading.Thread(target=self._physics, name="physics", daemon=True)
         physics.start()
         self.free_camera.start()
-        rospy.spin()
+        wait()
         physics.join(timeout=5.0)
         self.free_camera.stop()
         if self.viewer is not None:

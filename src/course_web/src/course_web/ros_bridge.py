@@ -100,13 +100,14 @@ class RosBridge(Bridge):
         self.lock = threading.Lock()
         self.publishers: Dict[str, _Publisher] = {}
         self.feeds: Dict[str, _Feed] = {}
+        self.master = RosMaster()
 
     def topic_type(self, topic: str) -> Optional[str]:
         """The topic's type as the master knows it (None: nobody publishes or subscribes it)."""
-        try:  # a Master per call: its xmlrpc proxy must not be shared between threads
-            return dict(rosgraph.Master(CALLER_ID).getTopicTypes()).get(topic)
-        except (rosgraph.MasterException, OSError) as err:
-            raise RequestError("the ROS master does not answer: %s" % err)
+        try:
+            return self.master.topic_types().get(topic)
+        except ApiError as err:
+            raise RequestError(str(err))
 
     def _checked_type(self, topic: str, type_name: Optional[str]) -> str:
         known = self.topic_type(topic)

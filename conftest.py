@@ -1,4 +1,4 @@
-"""Suite-wide set-up, before any test starts a process.
+"""Suite-wide set-up: signals before any test starts a process, and early starts.
 
 A suite started in the background (`nohup make test &`, a CI runner's job) may inherit SIGINT as
 *ignored*: a non-interactive shell ignores it for background commands, and an ignored signal
@@ -11,3 +11,14 @@ if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
     signal.signal(signal.SIGINT, signal.default_int_handler)
 if signal.getsignal(signal.SIGQUIT) is signal.SIG_IGN:
     signal.signal(signal.SIGQUIT, signal.SIG_DFL)
+
+
+def pytest_collection_finish(session) -> None:
+    """A selected test module with `start_early(config)` starts its slow background work now, so
+    that it overlaps the tests before it (tests/test_grader_samples.py grades its samples)."""
+    if session.config.option.collectonly:
+        return
+    modules = {getattr(item, "module", None) for item in session.items}
+    for module in sorted(filter(None, modules), key=lambda m: m.__name__):
+        if hasattr(module, "start_early"):
+            module.start_early(session.config)

@@ -15,13 +15,14 @@ import json
 import os
 import re
 import shutil
-import signal
 import subprocess
 import tempfile
 from pathlib import Path
 from typing import Dict, List, Optional, Tuple
 
 import pytest
+
+from course_testkit.nodes import NodeProcess
 
 ROOT = Path(__file__).resolve().parents[1]
 SAMPLES = sorted(p.parent for p in ROOT.glob("tests/submissions/*/expected.json"))
@@ -38,33 +39,22 @@ class SampleGrading:
     def __init__(self) -> None:
         self.folder = Path(tempfile.mkdtemp(prefix="grader-samples-"))
         self.out = self.folder / "grades"
-        self.log_path = self.folder / "grade.log"
-        with open(self.log_path, "wb") as log:
-            self.proc = subprocess.Popen(
-                ["rosrun", "course_grader", "grade"] + [str(s) for s in SAMPLES]
-                + ["--only-from", "expected.json", "--jobs", str(JOBS), "--out", str(self.out)],
-                stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL, start_new_session=True)
+        self.grader = NodeProcess(["rosrun", "course_grader", "grade"] + [str(s) for s in SAMPLES]
+                                  + ["--only-from", "expected.json", "--jobs", str(JOBS), "--out", str(self.out)],
+                                  stdin=subprocess.DEVNULL, log_path=str(self.folder / "grade.log"))
 
     def finished(self, timeout: float) -> Tuple[Optional[int], str]:
         """Wait for the grader: its exit code (None if still running after `timeout`) and output."""
         try:
-            self.proc.wait(timeout)
+            self.grader.proc.wait(timeout)
         except subprocess.TimeoutExpired:
             pass
-        return self.proc.poll(), self.log_path.read_text(errors="replace")
+        return self.grader.proc.poll(), self.grader.output()
 
     def stop(self) -> None:
         """At the session's end: Ctrl+C a grader still running (a session cut short), then remove
         its folder."""
-        if self.proc.poll() is None:
-            try:
-                os.killpg(self.proc.pid, signal.SIGINT)
-                self.proc.wait(STOP_TIMEOUT_S)
-            except subprocess.TimeoutExpired:
-                os.killpg(self.proc.pid, signal.SIGKILL)
-                self.proc.wait()
-            except ProcessLookupError:
-                pass
+        self.grader.stop(STOP_TIMEOUT_S)
         shutil.rmtree(self.folder, ignore_errors=True)
 
 

@@ -13,12 +13,21 @@ if signal.getsignal(signal.SIGQUIT) is signal.SIG_IGN:
     signal.signal(signal.SIGQUIT, signal.SIG_DFL)
 
 
+def starts_early(item) -> bool:
+    return hasattr(getattr(item, "module", None), "start_early")
+
+
+def pytest_collection_modifyitems(items) -> None:
+    """The tests of a module with `start_early(config)` run last, so that its background work
+    has the whole suite to overlap (the order within each part is kept)."""
+    items.sort(key=starts_early)
+
+
 def pytest_collection_finish(session) -> None:
-    """A selected test module with `start_early(config)` starts its slow background work now, so
-    that it overlaps the tests before it (tests/test_grader_samples.py grades its samples)."""
+    """A selected test module with `start_early(config)` starts its slow background work now
+    (tests/test_grader_samples.py grades its samples)."""
     if session.config.option.collectonly:
         return
-    modules = {getattr(item, "module", None) for item in session.items}
-    for module in sorted(filter(None, modules), key=lambda m: m.__name__):
-        if hasattr(module, "start_early"):
-            module.start_early(session.config)
+    modules = {item.module for item in session.items if starts_early(item)}
+    for module in sorted(modules, key=lambda m: m.__name__):
+        module.start_early(session.config)

@@ -2,8 +2,8 @@
 
 It loads; its canvas follows turtlesim (pixels change when the turtle moves); arrow keys pressed
 in the page move the turtle; the console shows turtlesim's warning and the level filter hides
-INFO; the plot draws /turtle1/pose/x:y (both lines, in rqt_plot's colours) and says why a path
-cannot be plotted; the node graph shows turtlesim and the page's own node and follows nodes that
+INFO; the plot draws /turtle1/pose/x:y (both lines, in rqt_plot's colours), says why a path
+cannot be plotted, and drops a late answer to an older path; the node graph shows turtlesim and the page's own node and follows nodes that
 come and go; the TF tree nests a static and a moving frame. Screenshots are saved to the
 artifact folder and checked for content. The simulator's panels are in test_lab_view_simulator.
 """
@@ -179,6 +179,47 @@ def test_a_plot_path_that_cannot_be_plotted_says_why(browser, lab, open_page):
         path.send_keys(typed, Keys.ENTER)
         assert wait_for(lambda: said in browser.find_element(By.ID, "plot-message").text, TIMEOUT_S), \
             "%s: the page said %r" % (typed, browser.find_element(By.ID, "plot-message").text)
+
+
+# Before the page's own scripts: the first /api/plot answer (the default plot the page asks for
+# when it opens) is held until window.heldPlot.release() is called.
+HOLD_FIRST_PLOT_ANSWER = """
+(() => {
+  const realFetch = window.fetch.bind(window);
+  let held = false;
+  window.heldPlot = {release: null};
+  window.fetch = (url, options) => {
+    const answer = realFetch(url, options);
+    if (held || !String(url).includes('/api/plot')) return answer;
+    held = true;
+    return new Promise((resolve, reject) => {
+      window.heldPlot.release = () => answer.then(resolve, reject);
+    });
+  };
+})();
+"""
+
+
+def test_a_late_answer_to_an_older_plot_is_dropped(browser, lab, open_page):
+    """The page asks for its default plot when it opens; a path typed before that answer comes
+    back must win. The answer for the old path was applied when it came last: it wiped the new
+    path's error (the flake this test makes certain: "the page said ''")."""
+    script = browser.execute_cdp_cmd("Page.addScriptToEvaluateOnNewDocument", {"source": HOLD_FIRST_PLOT_ANSWER})
+    try:
+        open_page(browser, lab)
+        assert wait_for(lambda: browser.execute_script("return window.heldPlot.release !== null"), TIMEOUT_S)
+        path = browser.find_element(By.ID, "plot-path")
+        path.clear()
+        path.send_keys("/turtle1/pose/z", Keys.ENTER)
+        plot_panel = browser.find_element(By.CSS_SELECTOR, "[data-panel=plot]")
+        assert wait_for(lambda: plot_panel.get_attribute("data-answers") == "1", TIMEOUT_S)
+        browser.execute_script("window.heldPlot.release()")
+        assert wait_for(lambda: plot_panel.get_attribute("data-answers") == "2", TIMEOUT_S), \
+            "the held answer never came back"
+        assert "has no field z" in browser.find_element(By.ID, "plot-message").text
+        assert browser.find_element(By.ID, "plot-legend").text == "", "the old plot's fields came back"
+    finally:
+        browser.execute_cdp_cmd("Page.removeScriptToEvaluateOnNewDocument", script)
 
 
 def graph_names(driver):

@@ -43,6 +43,8 @@ export function mount(bridge, root) {
   let series = [];        // {label, colour, points: [[t, v]]}
   let subscriptions = []; // [id, topic]
   let samples = 0;
+  let latest = 0;         // the last plot asked for: an older answer that arrives later is dropped
+  let answers = 0;        // answers come back (used or dropped), as data-answers for tests
 
   function stop() {
     for (const [id, topic] of subscriptions) bridge.unsubscribe(id, topic);
@@ -50,18 +52,23 @@ export function mount(bridge, root) {
   }
 
   async function start(spec) {
+    const asked = ++latest;
     let answer;
     try {
       answer = await ask('plot', {path: spec});
     } catch (error) {
+      root.dataset.answers = String(++answers);
+      if (asked !== latest) return;
       message.textContent = error.message;
       root.dataset.error = error.message;
       // A topic nobody publishes yet (the page was opened first): try again while it is asked for.
       if (/does not exist/.test(error.message)) {
-        setTimeout(() => { if (input.value.trim() === spec && root.dataset.error) start(spec); }, 3000);
+        setTimeout(() => { if (asked === latest) start(spec); }, 3000);
       }
       return;
     }
+    root.dataset.answers = String(++answers);
+    if (asked !== latest) return;
     stop();
     delete root.dataset.error;
     message.textContent = '';

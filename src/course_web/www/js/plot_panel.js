@@ -54,21 +54,23 @@ export function mount(bridge, root) {
   async function start(spec) {
     const asked = ++latest;
     let answer;
+    let failure = null;
     try {
       answer = await ask('plot', {path: spec});
     } catch (error) {
-      root.dataset.answers = String(++answers);
-      if (asked !== latest) return;
-      message.textContent = error.message;
-      root.dataset.error = error.message;
+      failure = error;
+    }
+    root.dataset.answers = String(++answers);
+    if (asked !== latest) return;
+    if (failure) {
+      message.textContent = failure.message;
+      root.dataset.error = failure.message;
       // A topic nobody publishes yet (the page was opened first): try again while it is asked for.
-      if (/does not exist/.test(error.message)) {
+      if (/does not exist/.test(failure.message)) {
         setTimeout(() => { if (asked === latest) start(spec); }, 3000);
       }
       return;
     }
-    root.dataset.answers = String(++answers);
-    if (asked !== latest) return;
     stop();
     delete root.dataset.error;
     message.textContent = '';

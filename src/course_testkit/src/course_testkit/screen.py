@@ -1,6 +1,10 @@
 """A private X display for tests (Xvfb on a free display number) and screenshot statistics.
 
-Xvfb picks the number itself (-displayfd), so tests never collide with a display in use.
+Xvfb picks the number itself (-displayfd), so tests never collide with a display in use, and
+runs with -noreset: by default an X server resets itself whenever its last client leaves, and a
+client that connects during the reset is refused ("could not connect to display"). A test's
+display often has one client at a time (the window under test, a screenshot), so without
+-noreset about 1 connection in 16 failed when two clients came and went at once.
 `colour_stats` is plain Python over RGB triples, so "is this screenshot blank?" is unit-tested.
 """
 from __future__ import annotations
@@ -29,7 +33,8 @@ class VirtualDisplay:
     def start(self) -> str:
         read_fd, write_fd = os.pipe()
         self.process = subprocess.Popen(
-            ["Xvfb", "-displayfd", str(write_fd), "-screen", "0", "%dx%dx24" % self.size, "-nolisten", "tcp"],
+            ["Xvfb", "-displayfd", str(write_fd), "-screen", "0", "%dx%dx24" % self.size, "-nolisten", "tcp",
+             "-noreset"],
             pass_fds=(write_fd,), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         os.close(write_fd)
         number = b""

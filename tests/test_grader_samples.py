@@ -45,11 +45,7 @@ class SampleGrading:
 
     def finished(self, timeout: float) -> Tuple[Optional[int], str]:
         """Wait for the grader: its exit code (None if still running after `timeout`) and output."""
-        try:
-            self.grader.proc.wait(timeout)
-        except subprocess.TimeoutExpired:
-            pass
-        return self.grader.proc.poll(), self.grader.output()
+        return self.grader.wait(timeout), self.grader.output()
 
     def stop(self) -> None:
         """At the session's end: Ctrl+C a grader still running (a session cut short), then remove

@@ -86,10 +86,7 @@ class PtyKeyboard:
 
     def wait(self, timeout: float = 10.0) -> Optional[int]:
         """The node's exit code once it exits by itself, or None if it is still running after `timeout`."""
-        try:
-            return self.node.proc.wait(timeout)
-        except subprocess.TimeoutExpired:
-            return None
+        return self.node.wait(timeout)
 
     @classmethod
     def rosrun(cls, pkg: str, node_type: str, args: Sequence[str] = (), **kwargs) -> "PtyKeyboard":

@@ -52,6 +52,13 @@ class NodeProcess:
     def running(self) -> bool:
         return self.proc.poll() is None
 
+    def wait(self, timeout: float = 10.0) -> Optional[int]:
+        """The node's exit code once it exits by itself, or None if it is still running after `timeout`."""
+        try:
+            return self.proc.wait(timeout)
+        except subprocess.TimeoutExpired:
+            return None
+
     def stop(self, timeout: float = 10.0) -> Optional[int]:
         """SIGINT (like Ctrl+C), then SIGKILL if the group does not go away."""
         if self.proc.poll() is None:

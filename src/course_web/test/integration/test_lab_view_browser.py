@@ -5,7 +5,8 @@ in the page move the turtle; the console shows turtlesim's warning and the level
 INFO; the plot draws /turtle1/pose/x:y (both lines, in rqt_plot's colours), says why a path
 cannot be plotted, and drops a late answer to an older path; the node graph shows turtlesim and
 the page's own node and follows nodes that come and go; the TF tree nests a static and a moving
-frame. Screenshots are saved to the artifact folder and checked for content. The simulator's panels are in test_lab_view_simulator.
+frame. Screenshots are saved to the artifact folder and checked for content. The simulator's
+panels are in test_lab_view_simulator.
 """
 from __future__ import annotations
 

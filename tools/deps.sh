@@ -20,6 +20,12 @@ else
   echo "deps: Debian packages present"
 fi
 
+# course_sandbox: the unprivileged user that graded student code runs as when the grader is root.
+if [ "$(id -u)" -eq 0 ] && ! getent passwd coursesandbox >/dev/null; then
+  useradd --system --no-create-home --home-dir /nonexistent --shell /usr/sbin/nologin coursesandbox
+  echo "deps: created the sandbox user coursesandbox"
+fi
+
 venv="$root/.venv"
 stamp="$venv/.requirements.sha256"
 want_sha="$(sha256sum "$root/requirements.txt" | cut -d' ' -f1)"

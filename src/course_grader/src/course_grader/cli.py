@@ -19,6 +19,7 @@ import time
 from typing import List, Optional, Set, Tuple
 
 from course_milestones.registry import MILESTONES
+from course_sandbox import levels
 
 from course_grader import gradebook, report, submissions
 from course_grader.runner import REFERENCE, Grader, Options
@@ -81,11 +82,16 @@ def main(argv: Optional[List[str]] = None) -> int:
     out = os.path.abspath(opts.out)
     os.makedirs(out, exist_ok=True)
     started = time.monotonic()
-    grader = Grader(MILESTONES, Options(out, opts.jobs, opts.only, opts.only_from, opts.timeout,
-                                        opts.verbose or reference))
+    try:
+        grader = Grader(MILESTONES, Options(out, opts.jobs, opts.only, opts.only_from, opts.timeout,
+                                            opts.verbose or reference, [s.path for s in subs if s.path]))
+    except levels.Unavailable as err:
+        print("cannot grade: %s" % err, file=sys.stderr)
+        return 2
+    print("isolation: %s" % grader.sandbox.describe(), flush=True)
     verdicts = grader.grade(subs, reference)
     gradebook.write(os.path.join(out, "gradebook.csv"), verdicts, MILESTONES)
-    report.write(os.path.join(out, "report.html"), verdicts, MILESTONES)
+    report.write(os.path.join(out, "report.html"), verdicts, MILESTONES, grader.sandbox.describe())
     if opts.results_json:
         shutil.copyfile(os.path.join(out, subs[0].name, "results.json"), opts.results_json)
     failed = [v for v in verdicts if not v.passed]

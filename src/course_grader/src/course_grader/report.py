@@ -23,13 +23,14 @@ def _cell(v: Verdict, anchor: str) -> str:
         css, html.escape(v.reason.splitlines()[0] if v.reason else "passed"), anchor, word)
 
 
-def render(verdicts: Sequence[Verdict], order: Sequence[Milestone], report_dir: str) -> str:
+def render(verdicts: Sequence[Verdict], order: Sequence[Milestone], report_dir: str, isolation: str = "") -> str:
     milestones = columns(verdicts, order)
     by_student: Dict[str, List[Verdict]] = {}
     for v in verdicts:
         by_student.setdefault(v.student, []).append(v)
     out = ["<!DOCTYPE html><html><head><meta charset='utf-8'><title>Class report</title>",
            "<style>%s</style></head><body><h1>Class report</h1>" % STYLE,
+           "<p>Isolation of student code: %s</p>" % html.escape(isolation or "not recorded"),
            "<table><tr><th>student</th>%s<th>total</th></tr>"
            % "".join("<th>%s</th>" % html.escape(m.name) for m in milestones)]
     for student, graded in by_student.items():
@@ -47,7 +48,7 @@ def render(verdicts: Sequence[Verdict], order: Sequence[Milestone], report_dir: 
                 html.escape(student), html.escape(v.milestone.name), "pass" if v.passed else "fail",
                 html.escape(v.milestone.name), html.escape(v.milestone.title), html.escape(v.milestone.text),
                 "passed" if v.passed else "failed", v.elapsed))
-            if not v.passed or v.logs:
+            if not v.passed or v.logs or v.notes:
                 out.append("<pre>%s</pre>" % html.escape(v.output()))
             for png in v.canvases():
                 rel = os.path.relpath(png, report_dir)
@@ -57,6 +58,6 @@ def render(verdicts: Sequence[Verdict], order: Sequence[Milestone], report_dir: 
     return "\n".join(out)
 
 
-def write(path: str, verdicts: Sequence[Verdict], order: Sequence[Milestone]) -> None:
+def write(path: str, verdicts: Sequence[Verdict], order: Sequence[Milestone], isolation: str = "") -> None:
     with open(path, "w") as f:
-        f.write(render(verdicts, order, os.path.dirname(os.path.abspath(path))))
+        f.write(render(verdicts, order, os.path.dirname(os.path.abspath(path)), isolation))

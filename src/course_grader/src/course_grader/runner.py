@@ -21,7 +21,10 @@ from course_testkit import junit
 from course_testkit.artifacts import ENV_VAR as ARTIFACTS_VAR
 from course_testkit.rostest_runner import run_rostest
 
+from course_sandbox.policy import ENV_VAR as POLICY_VAR
+
 from course_grader import gradescope, submissions, verdict, workspace
+from course_grader.sandboxing import SandboxPlan
 from course_grader.submissions import Submission
 from course_grader.verdict import Verdict
 
@@ -52,6 +55,7 @@ class Options(NamedTuple):
     only_from: Optional[str] = None  # or: the milestones named (as keys) in this JSON file of each submission
     timeout: float = 240.0  # per milestone run
     verbose: bool = False
+    sources: Sequence[str] = ()  # the submissions' own paths (the class folder): hidden from student code
 
 
 class _Progress:
@@ -84,6 +88,8 @@ class Grader:
         self._durations_path = os.path.join(options.out, WORK_DIR, "durations.json")
         self._durations = _load_json(self._durations_path)
         self._pool = ThreadPoolExecutor(max(1, options.jobs), thread_name_prefix="grade")
+        self._setup = workspace.course_setup()
+        self.sandbox = SandboxPlan(options.out, workspace.course_root(self._setup), options.sources)
 
     # -- scheduling -------------------------------------------------------------------------
     def _submit(self, fn, *args) -> None:
@@ -139,7 +145,7 @@ class Grader:
                 selected = verdict.select(self.milestones, [], self._only_for(None), True)
                 self._expect(sub, len(selected))
                 for m in longest_first(selected, self._durations):
-                    self._submit(self._run, sub, m, dict(os.environ), [])
+                    self._submit(self._run, sub, m, workspace.trusted_base_env(), [], None, None)
                 return
             files = self._work_dir(sub.name, "files")
             try:
@@ -170,9 +176,10 @@ class Grader:
             left_out = sorted({p.name for p in packages if p.name in self._protected})
             if left_out:
                 progress.note += "\nleft out (the course provides them): %s" % ", ".join(left_out)
-            setup = workspace.course_setup()
+            setup = self._setup
             workspace.populate(ws, own)
-            built = workspace.build(ws, setup)
+            built = workspace.build(ws, setup, self.sandbox, self._work_dir(sub.name, "home"),
+                                    self._work_dir(sub.name, "build.log"))
             if not built.ok:
                 for m in runnable:
                     self._record(Verdict(sub.name, m, False, verdict.build_failed(built.summary)))
@@ -185,20 +192,30 @@ class Grader:
                 return
             for m in longest_first(runnable, self._durations):
                 hints = [h for p in packages if p.name in m.packages for h in script_problems(p.path)]
-                self._submit(self._run, sub, m, built.env, hints)
+                self._submit(self._run, sub, m, built.env, hints, ws, built.student_env)
         except Exception:  # noqa: BLE001 - the grader's own failure is this submission's verdict
             self._fail_all(sub, selected or self.milestones[:1], "the grader failed on this submission:\n%s"
                            % traceback.format_exc(limit=5))
 
-    def _run(self, sub: Submission, m: Milestone, env: Dict[str, str], hints: List[str]) -> None:
+    def _run(self, sub: Submission, m: Milestone, env: Dict[str, str], hints: List[str], ws: Optional[str],
+             student_env: Optional[Dict[str, str]]) -> None:
+        """One milestone run: rostest (the master, the simulators, the check: trusted) with the
+        student's processes in a sandbox the check starts from the policy written here."""
         try:
             artifacts = self._student_dir(sub.name, m.name)
             shutil.rmtree(artifacts, ignore_errors=True)
             os.makedirs(artifacts)
             run_dir = self._work_dir(sub.name, "runs", m.name)
             shutil.rmtree(run_dir, ignore_errors=True)
-            result = run_rostest(MILESTONE_PACKAGE, m.test_file, env=dict(env, **{ARTIFACTS_VAR: artifacts}),
-                                 results_dir=run_dir, timeout=self.options.timeout)
+            home = os.path.join(run_dir, "student")
+            os.makedirs(os.path.join(home, "log"))
+            self.sandbox.give(home)
+            report = os.path.join(run_dir, "sandbox.json")
+            policy = self.sandbox.policy([p for p in (ws, home) if p], home, student_env, report)
+            policy_path = policy.write(os.path.join(run_dir, "sandbox_policy.json"))
+            run_env = dict(env, **{ARTIFACTS_VAR: artifacts, POLICY_VAR: policy_path})
+            result = run_rostest(MILESTONE_PACKAGE, m.test_file, env=run_env, results_dir=run_dir,
+                                 timeout=self.options.timeout)
             with open(os.path.join(artifacts, "rostest.txt"), "w") as f:
                 f.write(result.output)
             reason = "" if result.passed else result.summary()
@@ -208,7 +225,7 @@ class Grader:
             verdict.trim_files(artifacts)
             verdict.trim_files(run_dir)
             self._record(Verdict(sub.name, m, result.passed, reason, verdict.log_tails(artifacts),
-                                 result.elapsed, artifacts))
+                                 result.elapsed, artifacts, verdict.sandbox_notes(report)))
         except Exception:  # noqa: BLE001
             self._record(Verdict(sub.name, m, False, "the grader failed on this milestone:\n%s"
                                  % traceback.format_exc(limit=5)))
@@ -251,7 +268,8 @@ class Grader:
         ordered = sorted(progress.verdicts, key=lambda v: order.get(v.milestone.name, len(order)))
         elapsed = time.monotonic() - progress.started
         os.makedirs(self._student_dir(sub.name), exist_ok=True)
-        gradescope.write(self._student_dir(sub.name, "results.json"), ordered, elapsed, progress.note)
+        note = "\n".join(n for n in (progress.note, "isolation: " + self.sandbox.describe()) if n)
+        gradescope.write(self._student_dir(sub.name, "results.json"), ordered, elapsed, note)
         with self._lock:
             self._done += 1
             done = self._done

@@ -11,8 +11,10 @@ from __future__ import annotations
 
 import difflib
 import glob
+import json
 import os
 import re
+import stat
 from typing import Iterable, List, NamedTuple, Optional, Sequence
 
 from course_milestones.milestone import Milestone
@@ -39,6 +41,7 @@ class Verdict(NamedTuple):
     logs: str = ""  # the last lines of the student's node logs
     elapsed: float = 0.0
     artifacts_dir: str = ""
+    notes: str = ""  # what the sandbox saw (a limit the student's code hit), shown pass or fail
 
     @property
     def points(self) -> float:
@@ -47,7 +50,7 @@ class Verdict(NamedTuple):
     def output(self) -> str:
         """What the student reads for this milestone: the verdict, then the logs' last lines."""
         head = "passed" if self.passed else "FAILED: %s" % self.reason
-        return head + ("\n\n" + self.logs if self.logs else "")
+        return head + ("\n" + self.notes if self.notes else "") + ("\n\n" + self.logs if self.logs else "")
 
     def canvases(self) -> List[str]:
         """The PNG pictures the check saved (turtlesim canvases)."""
@@ -131,14 +134,27 @@ def trim_files(folder: str, keep: int = KEEP_BYTES) -> None:
     for root, _, files in os.walk(folder):
         for name in files:
             path = os.path.join(root, name)
-            try:
-                size = os.path.getsize(path)
-                if size <= keep or os.path.islink(path):
-                    continue
-                with open(path, "rb") as f:
-                    f.seek(size - keep)
-                    tail = f.read()
-                with open(path, "wb") as f:
-                    f.write(b"[... first %d bytes left out ...]\n" % (size - keep) + tail)
+            try:  # never through a link: the student's run folder is under `folder`
+                fd = os.open(path, os.O_RDWR | os.O_NOFOLLOW | os.O_NONBLOCK)
             except OSError:
                 continue
+            with os.fdopen(fd, "r+b") as f:
+                info = os.fstat(f.fileno())
+                if not stat.S_ISREG(info.st_mode) or info.st_size <= keep:
+                    continue
+                f.seek(info.st_size - keep)
+                tail = f.read()
+                f.seek(0)
+                f.write(b"[... first %d bytes left out ...]\n" % (info.st_size - keep) + tail)
+                f.truncate()
+
+
+def sandbox_notes(report_path: str) -> str:
+    """The limits the student's code hit in a run, in words, from the sandbox's report (written
+    by the trusted check, never by student code); "" when none or no report."""
+    try:
+        with open(report_path) as f:
+            hits = json.load(f).get("hits", {})
+    except (OSError, ValueError, AttributeError):
+        return ""
+    return "\n".join("sandbox limit: %s" % sentence for _, sentence in sorted(hits.items()) if isinstance(sentence, str))

@@ -12,11 +12,11 @@ import os
 import re
 import shlex
 import shutil
-import subprocess
 from typing import Dict, Iterable, List, NamedTuple, Optional, Sequence, Set
 
-from course_testkit import isolation
+from course_sandbox.run import capture_oneshot, run_oneshot
 
+from course_grader.sandboxing import SandboxPlan, overlay_paths, parse_env
 from course_grader.submissions import Package
 
 BUILD_TIMEOUT_S = 600.0
@@ -32,7 +32,8 @@ class BuildResult(NamedTuple):
     ok: bool
     log_path: str
     summary: str  # the lines that say why it failed ("" when ok)
-    env: Optional[Dict[str, str]]  # the overlay's environment when ok
+    env: Optional[Dict[str, str]]  # the trusted side's environment for the overlay, when ok
+    student_env: Optional[Dict[str, str]] = None  # the overlay's own, for the student's processes
 
 
 def course_setup() -> str:
@@ -61,15 +62,6 @@ def course_site(setup_bash: str) -> str:
     """The Python modules folder of the course workspace whose setup.bash this is."""
     found = glob.glob(os.path.join(os.path.dirname(setup_bash), "lib", "python3*", "dist-packages"))
     return found[0] if found else ""
-
-
-def sourced_env(setup_bash: str, base: Optional[Dict[str, str]] = None) -> Dict[str, str]:
-    """The environment after `source setup_bash` in bash (what a student's shell would have)."""
-    out = subprocess.run(["bash", "-c", "source %s >/dev/null && env -0" % shlex.quote(setup_bash)],
-                         env=dict(os.environ if base is None else base), stdout=subprocess.PIPE, check=True,
-                         timeout=60).stdout
-    pairs = (item.split(b"=", 1) for item in out.split(b"\0") if b"=" in item)
-    return {k.decode(errors="replace"): v.decode(errors="replace") for k, v in pairs}
 
 
 def build_failure_summary(log: str, lines: int = SUMMARY_LINES) -> str:
@@ -112,32 +104,52 @@ def populate(ws: str, packages: Sequence[Package]) -> None:
         shutil.copytree(package.path, target, symlinks=True)
 
 
-def build(ws: str, setup_bash: str, timeout: float = BUILD_TIMEOUT_S) -> BuildResult:
-    """catkin_make in `ws` on top of the course workspace; the overlay's environment if it builds."""
-    log_path = os.path.join(ws, "build.log")
-    token = isolation.new_token()
-    env = isolation.token_env(dict(os.environ), token)
-    env.pop("ROS_MASTER_URI", None)
+def course_root(setup_bash: str) -> str:
+    """The course checkout: the folder above the workspace whose devel/setup.bash this is (it
+    holds the workspace, the venv and the sources the devel space links to)."""
+    return os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(setup_bash))))
+
+
+def trusted_base_env() -> Dict[str, str]:
+    """The grader's environment less what no build or run should inherit."""
+    env = dict(os.environ)
+    for key in ("ROS_MASTER_URI", "COURSE_ARTIFACTS_DIR", "COURSE_SANDBOX_POLICY", "DISPLAY"):
+        env.pop(key, None)
+    return env
+
+
+def build(ws: str, setup_bash: str, plan: SandboxPlan, home: str, log_path: str,
+          timeout: float = BUILD_TIMEOUT_S) -> BuildResult:
+    """catkin_make in `ws` on top of the course workspace, in a sandbox of its own (CMake runs
+    whatever the student's CMakeLists.txt says): writable are only `ws` and `home`. If it builds,
+    the overlay's environment for the trusted side (computed) and for the student's own processes
+    (sourced inside a sandbox: the overlay's setup.bash and env hooks are the student's). The log
+    goes to `log_path`, outside `ws`: the trusted side never opens a path the student could
+    have made a link."""
+    plan.give(ws)
+    plan.give(home)
+    policy = plan.policy([ws, home], home)
+    env = dict(trusted_base_env(), HOME=home)
     command = "source %s && catkin_make -DPYTHON_EXECUTABLE=%s" % (shlex.quote(setup_bash), PYTHON)
-    with open(log_path, "wb") as log:
-        proc = subprocess.Popen(["bash", "-c", command], cwd=ws, env=env, stdout=log, stderr=subprocess.STDOUT,
-                                stdin=subprocess.DEVNULL, start_new_session=True)
-        isolation.limit_file_size(proc.pid)
-        try:
-            code = proc.wait(timeout)
-        except subprocess.TimeoutExpired:
-            code = None
-        finally:
-            isolation.kill_run(token, proc.pid)
-            proc.wait()
-    with open(log_path, "rb") as f:
-        f.seek(max(0, os.path.getsize(log_path) - 200_000))
-        text = f.read().decode("utf-8", errors="replace")
+    code = run_oneshot(policy, ["bash", "-c", command], ws, env, log_path, timeout)
+    text = _tail(log_path)
     if code is None:
         return BuildResult(False, log_path, "catkin_make did not finish within %.0f s" % timeout, None)
     if code != 0:
         return BuildResult(False, log_path, build_failure_summary(text), None)
-    return BuildResult(True, log_path, "", sourced_env(os.path.join(ws, "devel", "setup.bash")))
+    source = "source %s >/dev/null 2>&1; exec env -0" % shlex.quote(os.path.join(ws, "devel", "setup.bash"))
+    code, out = capture_oneshot(policy, ["bash", "-c", source], ws, env)
+    student_env = parse_env(out) if code == 0 else None
+    if not student_env:
+        return BuildResult(False, log_path, "sourcing the overlay's devel/setup.bash failed (exit code %s)" % code, None)
+    return BuildResult(True, log_path, "", overlay_paths(trusted_base_env(), ws), student_env)
+
+
+def _tail(path: str, size: int = 200_000) -> str:
+    """The end of a log file the trusted side wrote."""
+    with open(path, "rb") as f:
+        f.seek(max(0, os.path.getsize(path) - size))
+        return f.read().decode("utf-8", errors="replace")
 
 
 def course_packages() -> Set[str]:

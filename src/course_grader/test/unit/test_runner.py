@@ -34,7 +34,8 @@ def test_each_submission_gets_its_verdicts_and_one_progress_line(tmp_path, monke
     monkeypatch.setattr(workspace, "course_packages", lambda: {"turtlesim", "course_testkit"})
     monkeypatch.setattr(workspace, "course_setup", lambda: "/nowhere/setup.bash")
     monkeypatch.setattr(workspace, "course_site", lambda setup: "")
-    monkeypatch.setattr(workspace, "build", lambda ws, setup: BuildResult(True, "", "", {"PATH": "/usr/bin"}))
+    monkeypatch.setattr(workspace, "build",
+                        lambda ws, setup, plan, home, log: BuildResult(True, "", "", {"PATH": "/usr/bin"}))
     (tmp_path / "broken.zip").write_bytes(b"not a zip")
     subs = [_folder(tmp_path, "alice", ["chatter", "my_chatter", "turtlesim"]),
             _folder(tmp_path, "bob", ["mychatter"]),
@@ -54,3 +55,4 @@ def test_each_submission_gets_its_verdicts_and_one_progress_line(tmp_path, monke
     assert "left out (the course provides them): turtlesim" in alice["output"]
     assert (out / "bob" / "checkpoint1" / "junit.xml").is_file()
     assert json.loads((out / "_work" / "durations.json").read_text())["chatter"] == 1.5
+    assert "isolation: " in alice["output"]

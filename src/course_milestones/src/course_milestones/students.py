@@ -3,6 +3,11 @@ registered what (the text names the package, not the scripts), describe what eac
 failure message, and stop them. Every process runs in its own process group, with its output in
 an artifact log (course_testkit.artifacts) that the grader shows the student.
 
+When the grader runs the check, every student process goes into the run's sandbox
+(course_sandbox: its own namespaces, read-only course, hidden outputs, an unprivileged user,
+limits), named by $COURSE_SANDBOX_POLICY; `run_sandbox()` is that sandbox, None under a plain
+`rostest`. The simulators and the check itself stay outside.
+
 Three ways of starting a student's code, for three kinds of node:
 - Script: with a pipe as stdin, several at once, each registered node tied to the process that
   started it by the node's pid (XML-RPC getPid): the text's publisher, subscriber or server is
@@ -14,6 +19,8 @@ Three ways of starting a student's code, for three kinds of node:
 """
 from __future__ import annotations
 
+import atexit
+import functools
 import os
 import re
 import signal
@@ -21,6 +28,9 @@ import subprocess
 import time
 import xmlrpc.client
 from typing import Callable, Dict, List, NamedTuple, Optional, Sequence, Tuple
+
+from course_sandbox import policy as sandbox_policy
+from course_sandbox.run import RunSandbox
 
 from course_milestones.discovery import (CALLER, Registration, describe as describe_names, list_executables,
                                          new_registrations, node_uris, own_names, registrations_with_uris)
@@ -37,6 +47,30 @@ SETTLED = 3.0             # s: a node registered for this long with other topics
 ROSLAUNCH_STOP_S = 25.0
 
 
+@functools.lru_cache(maxsize=1)
+def run_sandbox() -> Optional[RunSandbox]:
+    """The sandbox of this milestone run (one per check process), or None without a policy. Its
+    processes all end when the check exits."""
+    policy = sandbox_policy.from_environment()
+    if policy is None:
+        return None
+    sandbox = RunSandbox(policy)
+    atexit.register(sandbox.close)
+    return sandbox
+
+
+def run_captured(argv: Sequence[str], timeout: float = 30.0) -> Tuple[Optional[int], bytes]:
+    """Run a command as student code (in the run's sandbox when there is one) to its end: its
+    exit code (None past `timeout`) and its standard output, at most 1 MiB."""
+    sandbox = run_sandbox()
+    if sandbox is not None:
+        return sandbox.run_captured(argv, timeout)
+    from course_sandbox.run import _collect
+    proc = subprocess.Popen(list(argv), stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+                            start_new_session=True)
+    return _collect(proc, timeout)
+
+
 class Script(NamedTuple):
     """One student executable started with a pipe as stdin; its output is node.output()."""
 
@@ -51,7 +85,7 @@ class Script(NamedTuple):
 def start(path: str, args: Sequence[str] = ()) -> Script:
     """Start one executable with a pipe as stdin (for typed lines) and its output in an artifact log."""
     log = artifact_path(os.path.basename(path))
-    return Script(path, NodeProcess([path] + list(args), stdin=subprocess.PIPE, log_path=log))
+    return Script(path, NodeProcess([path] + list(args), stdin=subprocess.PIPE, log_path=log, sandbox=run_sandbox()))
 
 
 def stop_all(started: Sequence[Script]) -> None:
@@ -82,7 +116,9 @@ def registrations_of(started: Script, known: Dict[str, int]) -> List[Registratio
 def _process_group(uri: str) -> int:
     try:
         _, _, pid = xmlrpc.client.ServerProxy(uri).getPid(CALLER)
-        return os.getpgid(pid)
+        sandbox = run_sandbox()
+        host_pid = sandbox.host_pid(pid) if sandbox is not None else pid  # getPid answers the sandbox's pid
+        return os.getpgid(host_pid) if host_pid is not None else -1
     except Exception:  # noqa: BLE001 - the node went away, or is not on this machine
         return -1
 
@@ -194,7 +230,7 @@ def start_and_wait(command: Sequence[str], wanted: Callable[[Registration], bool
     when it exits, after `timeout`, or once it has stayed registered for SETTLED seconds without
     it. Returns the keyboard (still running), the registration (or None) and what it registered."""
     before = node_uris()
-    keyboard = PtyKeyboard(command, log_path=artifact_path(log_name), env=env)
+    keyboard = PtyKeyboard(command, log_path=artifact_path(log_name), env=env, sandbox=run_sandbox())
     deadline = time.monotonic() + timeout
     first_seen: Optional[float] = None
     while True:
@@ -243,10 +279,12 @@ def wait_for_publisher(topic: str, keyboard: PtyKeyboard, timeout: float = 30.0,
 class Roslaunch(PtyKeyboard):
     """`roslaunch PKG FILE ARGS...` on a pseudo-terminal, its output in the artifact `<log_name>.log`.
     roslaunch runs against the master of the milestone's rostest (ROS_MASTER_URI is inherited);
-    stop() also ends the nodes it started in sessions of their own."""
+    stop() also ends the nodes it started in sessions of their own. A student's launch file runs
+    in the run's sandbox; `student=False` is for the course's own (a simulator the check starts)."""
 
-    def __init__(self, pkg: str, filename: str, log_name: str, args: Sequence[str] = ()) -> None:
-        super().__init__(["roslaunch", pkg, filename] + list(args), log_path=artifact_path(log_name))
+    def __init__(self, pkg: str, filename: str, log_name: str, args: Sequence[str] = (), student: bool = True) -> None:
+        super().__init__(["roslaunch", pkg, filename] + list(args), log_path=artifact_path(log_name),
+                         sandbox=run_sandbox() if student else None)
 
     def stop(self, timeout: float = ROSLAUNCH_STOP_S, grace: float = 1.5) -> Optional[int]:
         return super().stop(timeout, grace)

@@ -18,9 +18,14 @@ import subprocess
 import uuid
 from typing import Dict, Iterable, List, Optional, Sequence, Set
 
+from course_sandbox import procs
+from course_sandbox.policy import Limits
+from course_sandbox.procs import descendants
+
 TOKEN_VAR = "COURSE_RUN_TOKEN"
-# Largest file any process of a run may write: student logs, canvas pictures, JUnit XML.
-MAX_FILE_BYTES = 64 * 1024 * 1024
+# Largest file any process of a run may write: student logs, canvas pictures, JUnit XML (the
+# sandbox's own per-file limit: one number).
+MAX_FILE_BYTES = Limits().file_bytes
 
 
 def new_token() -> str:
@@ -37,48 +42,6 @@ def free_port(host: str = "127.0.0.1") -> int:
     with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as sock:
         sock.bind((host, 0))
         return sock.getsockname()[1]
-
-
-def _proc_pids() -> Iterable[int]:
-    for entry in os.listdir("/proc"):
-        if entry.isdigit():
-            yield int(entry)
-
-
-def pids_with_token(token: str) -> List[int]:
-    """Every live process whose environment holds TOKEN_VAR=token (never this process)."""
-    needle = ("%s=%s" % (TOKEN_VAR, token)).encode()
-    found = []
-    for pid in _proc_pids():
-        if pid == os.getpid():
-            continue
-        try:
-            with open("/proc/%d/environ" % pid, "rb") as f:
-                variables = f.read().split(b"\0")
-        except OSError:  # gone, or not ours
-            continue
-        if needle in variables:
-            found.append(pid)
-    return found
-
-
-def descendants(root: int) -> List[int]:
-    """The processes below `root` in the parent tree right now (not root itself)."""
-    children: Dict[int, List[int]] = {}
-    for pid in _proc_pids():
-        try:
-            with open("/proc/%d/stat" % pid) as f:
-                # The command name may hold spaces and parentheses: the fields after the last ')'.
-                ppid = int(f.read().rsplit(")", 1)[1].split()[1])
-        except (OSError, IndexError, ValueError):
-            continue
-        children.setdefault(ppid, []).append(pid)
-    found, todo = [], [root]
-    while todo:
-        for child in children.get(todo.pop(), []):
-            found.append(child)
-            todo.append(child)
-    return found
 
 
 def _signal_all(pids: Iterable[int], sig: int) -> None:

@@ -40,21 +40,22 @@ class PtyKeyboard:
     """Runs a command with a pseudo-terminal as stdin; press() types into it."""
 
     def __init__(self, command: Sequence[str], log_path: Optional[str] = None, env: Optional[dict] = None,
-                 output_on_pty: bool = False, raw_wait: float = 0.0) -> None:
+                 output_on_pty: bool = False, raw_wait: float = 0.0, sandbox=None) -> None:
         """`output_on_pty`: the node also writes to the terminal, and read_until() reads what it printed.
-        `raw_wait`: how long press() waits for raw mode before typing a single key (see above)."""
+        `raw_wait`: how long press() waits for raw mode before typing a single key (see above).
+        `sandbox`: run the command in it (NodeProcess)."""
         self.raw_wait = raw_wait
         self.seen_raw = False
-        self._start = (list(command), log_path, env, output_on_pty)
+        self._start = (list(command), log_path, env, output_on_pty, sandbox)
         self._launch(log_path)
 
     def _launch(self, log_path: Optional[str]) -> None:
-        command, _, env, output_on_pty = self._start
+        command, _, env, output_on_pty, sandbox = self._start
         self.master, slave = pty.openpty()
         self.terminal_text = b""
         try:
             self.node = NodeProcess(command, stdin=slave, log_path=log_path, env=env,
-                                    stdout=slave if output_on_pty else None)
+                                    stdout=slave if output_on_pty else None, sandbox=sandbox)
         finally:
             os.close(slave)
 

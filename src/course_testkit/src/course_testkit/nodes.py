@@ -4,9 +4,12 @@ from __future__ import annotations
 import os
 import signal
 import subprocess
-from typing import IO, List, Optional, Sequence, Union
+from typing import IO, TYPE_CHECKING, List, Optional, Sequence, Union
 
 import roslib.packages
+
+if TYPE_CHECKING:
+    from course_sandbox.run import RunSandbox
 
 
 def find_executable(pkg: str, node_type: str) -> str:
@@ -30,13 +33,18 @@ class NodeProcess:
 
     def __init__(self, command: Sequence[str], stdin: Union[int, IO, None] = None,
                  log_path: Optional[str] = None, env: Optional[dict] = None,
-                 stdout: Union[int, IO, None] = None) -> None:
-        """Output goes to `stdout` if given, else to `log_path` (or nowhere)."""
+                 stdout: Union[int, IO, None] = None, sandbox: Optional["RunSandbox"] = None) -> None:
+        """Output goes to `stdout` if given, else to `log_path` (or nowhere). With `sandbox` (a
+        course_sandbox.run.RunSandbox), the command runs inside it as untrusted student code:
+        its output still goes to the file this (trusted) process opened."""
         self.command: List[str] = list(command)
         self.log_path: Optional[str] = log_path if stdout is None else None
         self._log = open(log_path, "wb") if log_path else subprocess.DEVNULL
-        self.proc = subprocess.Popen(self.command, stdin=stdin, stdout=self._log if stdout is None else stdout,
-                                     stderr=subprocess.STDOUT, env=unbuffered_env(env), start_new_session=True)
+        argv, env, cwd = self.command, unbuffered_env(env), None
+        if sandbox is not None:
+            argv, env, cwd = sandbox.prepare(self.command, env)
+        self.proc = subprocess.Popen(argv, stdin=stdin, stdout=self._log if stdout is None else stdout,
+                                     stderr=subprocess.STDOUT, env=env, cwd=cwd, start_new_session=True)
 
     @classmethod
     def rosrun(cls, pkg: str, node_type: str, args: Sequence[str] = (), **kwargs) -> "NodeProcess":

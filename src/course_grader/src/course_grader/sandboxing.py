@@ -1,0 +1,94 @@
+"""The grader's side of the sandbox: which isolation is in force, and the policy of each build and
+milestone run (what the student's code may write, what it must not see).
+
+Paths: the overlay workspace `<out>/_work/<student>/ws` and each run's student home
+`<out>/_work/<student>/runs/<milestone>/student` are the only places student code writes; the
+grader's output folder (every student's verdicts and files), the class folder and the grader's
+home are hidden; the course checkout stays readable. Each run's trusted files (rostest's
+ROS_HOME with the JUnit XML, the policy itself) are next to the student home, out of its view.
+"""
+from __future__ import annotations
+
+import os
+import pwd
+from typing import Dict, List, Optional, Sequence
+
+from course_sandbox import levels
+from course_sandbox.policy import DEFAULT_USER, Policy, normalised
+
+SANDBOX_USER_VAR = "COURSE_SANDBOX_USER"
+
+
+class SandboxPlan:
+    """One grading's sandbox settings: the level (probed once), the user, and the paths."""
+
+    def __init__(self, out: str, course_root: str, class_paths: Sequence[str] = (),
+                 user: Optional[str] = None) -> None:
+        self.user = user or os.environ.get(SANDBOX_USER_VAR, DEFAULT_USER)
+        self.level = levels.detect(self.user)
+        self.out = os.path.realpath(out)
+        self.course_root = os.path.realpath(course_root)
+        home = os.path.expanduser("~")
+        hidden = normalised([self.out, home, "/root", "/run/user"]
+                            + [os.path.dirname(os.path.abspath(p)) for p in class_paths]
+                            + [os.path.abspath(p) for p in class_paths])
+        # A hidden folder holding the course (the grader's home) still shows the course: the
+        # sandbox mounts the deeper path last.
+        self.hidden = [p for p in hidden if p not in ("/", self.course_root)]
+
+    def describe(self) -> str:
+        return levels.describe(self.level, self.user)
+
+    def give(self, path: str) -> str:
+        """Make `path` (a folder tree the trusted side created) the student's: owned by the sandbox
+        user when the level switches users. Returns `path`."""
+        os.makedirs(path, exist_ok=True)
+        if levels.switches_user(self.level):
+            entry = pwd.getpwnam(self.user)
+            for folder, dirs, files in os.walk(path):
+                for name in [folder] + [os.path.join(folder, n) for n in dirs + files]:
+                    os.lchown(name, entry.pw_uid, entry.pw_gid)
+        return path
+
+    def policy(self, writable: Sequence[str], home: str, student_env: Optional[Dict[str, str]] = None,
+               report: str = "") -> Policy:
+        return Policy(self.level, self.user, normalised(writable), list(self.hidden), [self.course_root],
+                      home, student_env, report=report)
+
+
+def parse_env(data: bytes) -> Dict[str, str]:
+    """`env -0` output (from the student's sandbox: untrusted) as a dict; malformed entries dropped."""
+    env: Dict[str, str] = {}
+    for item in data.split(b"\0"):
+        if b"=" in item:
+            key, value = item.split(b"=", 1)
+            name = key.decode("utf-8", "replace")
+            if name and name.replace("_", "a").isalnum():
+                env[name] = value.decode("utf-8", "replace")
+    return env
+
+
+def overlay_paths(course_env: Dict[str, str], ws: str, python: bool = True) -> Dict[str, str]:
+    """The trusted side's environment for grading the overlay `ws`: the course's, with the
+    overlay's packages found first (ROS_PACKAGE_PATH, CMAKE_PREFIX_PATH) and, with `python`, its
+    generated Python modules. Computed, never sourced: the overlay's setup.bash and env hooks are
+    the student's code."""
+    env = dict(course_env)
+
+    def prepend(var: str, value: str) -> None:
+        rest = [p for p in env.get(var, "").split(os.pathsep) if p and p != value]
+        env[var] = os.pathsep.join([value] + rest)
+    prepend("ROS_PACKAGE_PATH", os.path.join(ws, "src"))
+    prepend("CMAKE_PREFIX_PATH", os.path.join(ws, "devel"))
+    if python:
+        for site in sorted(_sites(ws)):
+            prepend("PYTHONPATH", site)
+    return env
+
+
+def _sites(ws: str) -> List[str]:
+    lib = os.path.join(ws, "devel", "lib")
+    try:
+        return [os.path.join(lib, d, "dist-packages") for d in os.listdir(lib) if d.startswith("python3")]
+    except OSError:
+        return []

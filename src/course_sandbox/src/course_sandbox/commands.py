@@ -1,0 +1,125 @@
+"""The command lines that put a process in a sandbox (pure functions: a policy in, an argv out).
+
+One sandbox per milestone run is a *keeper*: bubblewrap makes the namespaces and the filesystem
+view and runs a small reaper as their first process (KEEPER_INIT); every student process of the
+run joins them with nsenter. Killing the keeper's namespace init ends every process in the namespace,
+whatever it did (new sessions, a cleared environment, double forks). A build is one bubblewrap
+call around catkin_make.
+
+Signals: a check stops a student node with Ctrl+C (SIGINT to its process group). bubblewrap and
+nsenter die of SIGINT, which would tear the sandbox down before the node has handled its
+Ctrl+C; so they run with SIGINT and SIGTERM ignored (`env --ignore-signal`), and the student's
+command gets them back (`env --default-signal`). nsenter waits for the node and gives back its
+exit status.
+
+/dev is a small tmpfs with null, zero, full, random, urandom and tty, not bubblewrap's `--dev`:
+mounting a devpts makes bubblewrap nest a second user namespace, which nsenter could not join.
+A node's terminal (a pseudo-terminal the check opened) reaches it as an inherited descriptor.
+"""
+from __future__ import annotations
+
+import os
+from typing import List, Sequence
+
+from course_sandbox import levels
+from course_sandbox.policy import Limits, Policy
+
+DEVICES = ("null", "zero", "full", "random", "urandom", "tty")
+SHM_BYTES = 64 * 1024 * 1024
+IGNORE_STOP_SIGNALS = ["env", "--ignore-signal=INT,TERM"]
+# The first process of a run's PID namespace (bubblewrap's --as-pid-1): it reaps the orphans the
+# student's processes leave and ignores every signal a student could send it, so the namespace
+# lives until the trusted side kills it (a PID namespace's init gets no signal it does not handle
+# from inside, SIGKILL included).
+KEEPER_INIT = ("import os, signal, time\n"
+               "for s in set(signal.Signals) - {signal.SIGKILL, signal.SIGSTOP, signal.SIGCHLD}:\n"
+               "    signal.signal(s, signal.SIG_IGN)\n"
+               "while True:\n"
+               "    try:\n"
+               "        os.wait()\n"
+               "    except ChildProcessError:\n"
+               "        time.sleep(0.2)\n")
+RESTORE_STOP_SIGNALS = ["env", "--default-signal=INT,TERM"]
+
+
+def user_prefix(policy: Policy) -> List[str]:
+    """Become the sandbox user (only when the level switches users, i.e. the grader is root)."""
+    if not levels.switches_user(policy.level):
+        return []
+    prefix = ["setpriv", "--reuid", policy.user, "--regid", policy.user, "--clear-groups"]
+    if not levels.uses_namespaces(policy.level):
+        prefix.append("--no-new-privs")  # bubblewrap sets it itself
+    return prefix + ["--"]
+
+
+def limits_prefix(limits: Limits, level: str) -> List[str]:
+    """prlimit for one process. RLIMIT_NPROC counts per user *namespace* (Linux >= 5.14), so inside
+    the sandbox it bounds this sandbox alone; without namespaces it would count the grader's own
+    processes too, so it is set only where the user is the sandbox user."""
+    args = ["prlimit", "--as=%d" % limits.address_space_bytes,
+            "--cpu=%d:%d" % (limits.cpu_seconds, limits.cpu_seconds + 5),
+            "--fsize=%d" % limits.file_bytes, "--core=0"]
+    if level != levels.NONE:
+        args.append("--nproc=%d" % limits.processes)
+    return args + ["--"]
+
+
+def _depth(path: str) -> int:
+    return len([part for part in path.split(os.sep) if part])
+
+
+def view_args(policy: Policy) -> List[str]:
+    """bubblewrap's filesystem view: the system read-only, a private /tmp and /dev/shm, the
+    hidden paths empty, the readable ones read-only and the writable ones writable. Mounts go
+    from the shallowest path to the deepest, so a deeper rule wins over the folder it is in
+    (the student's workspace inside the hidden output folder)."""
+    args = ["--ro-bind", "/", "/", "--proc", "/proc", "--tmpfs", "/dev"]
+    for dev in DEVICES:
+        if os.path.exists("/dev/" + dev):
+            args += ["--dev-bind", "/dev/" + dev, "/dev/" + dev]
+    args += ["--symlink", "/proc/self/fd", "/dev/fd", "--symlink", "/proc/self/fd/0", "/dev/stdin",
+             "--symlink", "/proc/self/fd/1", "/dev/stdout", "--symlink", "/proc/self/fd/2", "/dev/stderr",
+             "--size", str(SHM_BYTES), "--tmpfs", "/dev/shm",
+             "--size", str(policy.limits.tmp_bytes), "--tmpfs", "/tmp"]
+    rules = []
+    for path in policy.hidden:
+        if os.path.isdir(path):
+            rules.append((path, 0, ["--tmpfs", path]))
+        elif os.path.exists(path):
+            rules.append((path, 0, ["--ro-bind", "/dev/null", path]))
+    rules += [(path, 1, ["--ro-bind", path, path]) for path in policy.readable if os.path.exists(path)]
+    rules += [(path, 2, ["--bind", path, path]) for path in policy.writable if os.path.isdir(path)]
+    for _, _, rule in sorted(rules, key=lambda r: (_depth(r[0]), r[1])):
+        args += rule
+    return args
+
+
+def namespace_args() -> List[str]:
+    return ["--unshare-user", "--unshare-pid", "--unshare-ipc", "--unshare-uts", "--unshare-cgroup-try",
+            "--die-with-parent"]
+
+
+def keeper_command(policy: Policy) -> List[str]:
+    """The process that holds one run's namespaces (levels with namespaces only)."""
+    return (user_prefix(policy) + IGNORE_STOP_SIGNALS + ["bwrap"] + namespace_args() + view_args(policy)
+            + ["--as-pid-1", "--", "/usr/bin/python3", "-I", "-S", "-c", KEEPER_INIT])
+
+
+def enter_command(policy: Policy, init_pid: int, command: Sequence[str], cwd: str) -> List[str]:
+    """`command` as a process of the run's sandbox, whose namespace init is `init_pid`. Without
+    namespaces: as the sandbox user (if any) with the limits."""
+    inner = RESTORE_STOP_SIGNALS + limits_prefix(policy.limits, policy.level) + list(command)
+    if not levels.uses_namespaces(policy.level):
+        return user_prefix(policy) + inner
+    return (user_prefix(policy) + IGNORE_STOP_SIGNALS
+            + ["nsenter", "--target", str(init_pid), "--user", "--mount", "--pid", "--preserve-credentials",
+               "--wd=" + cwd, "--"] + inner)
+
+
+def oneshot_command(policy: Policy, command: Sequence[str], cwd: str) -> List[str]:
+    """`command` in a sandbox of its own (a build): it ends when the command ends."""
+    inner = limits_prefix(policy.limits, policy.level) + list(command)
+    if not levels.uses_namespaces(policy.level):
+        return user_prefix(policy) + inner
+    return (user_prefix(policy) + ["bwrap"] + namespace_args() + view_args(policy) + ["--chdir", cwd, "--"]
+            + inner)

@@ -1,0 +1,94 @@
+"""What /proc says about processes: the tree below one, a PID namespace's members, their pid in
+that namespace, their memory and CPU time. Reads only; a process that goes away is skipped."""
+from __future__ import annotations
+
+import os
+from typing import Dict, Iterable, List, NamedTuple, Optional
+
+PAGE = os.sysconf("SC_PAGE_SIZE")
+TICKS = os.sysconf("SC_CLK_TCK")
+
+
+def pids() -> Iterable[int]:
+    for entry in os.listdir("/proc"):
+        if entry.isdigit():
+            yield int(entry)
+
+
+def parent(pid: int) -> Optional[int]:
+    try:
+        with open("/proc/%d/stat" % pid) as f:
+            # The command name may hold spaces and parentheses: the fields after the last ')'.
+            return int(f.read().rsplit(")", 1)[1].split()[1])
+    except (OSError, IndexError, ValueError):
+        return None
+
+
+def descendants(root: int) -> List[int]:
+    """The processes below `root` in the parent tree right now (not root itself)."""
+    children: Dict[int, List[int]] = {}
+    for pid in pids():
+        ppid = parent(pid)
+        if ppid is not None:
+            children.setdefault(ppid, []).append(pid)
+    found, todo = [], [root]
+    while todo:
+        for child in children.get(todo.pop(), []):
+            found.append(child)
+            todo.append(child)
+    return found
+
+
+def pid_namespace(pid: int) -> Optional[str]:
+    try:
+        return os.readlink("/proc/%d/ns/pid" % pid)
+    except OSError:
+        return None
+
+
+def members(namespace: str) -> List[int]:
+    """Every process whose PID namespace is `namespace` (as /proc/<pid>/ns/pid names it)."""
+    return [pid for pid in pids() if pid_namespace(pid) == namespace]
+
+
+def namespace_pid(pid: int) -> Optional[int]:
+    """The pid `pid` has in its own (innermost) PID namespace."""
+    try:
+        with open("/proc/%d/status" % pid) as f:
+            for line in f:
+                if line.startswith("NSpid:"):
+                    return int(line.split()[-1])
+    except (OSError, ValueError, IndexError):
+        pass
+    return None
+
+
+class Usage(NamedTuple):
+    tasks: int  # threads included, as RLIMIT_NPROC counts
+    rss_bytes: int
+    cpu_seconds: float  # of this process alone (user + system)
+
+
+def usage(pid: int) -> Optional[Usage]:
+    try:
+        with open("/proc/%d/stat" % pid) as f:
+            fields = f.read().rsplit(")", 1)[1].split()
+        with open("/proc/%d/statm" % pid) as f:
+            rss_pages = int(f.read().split()[1])
+    except (OSError, IndexError, ValueError):
+        return None
+    # After the ')' : state(0) ppid(1) ... utime(11) stime(12) ... num_threads(17)
+    return Usage(int(fields[17]), rss_pages * PAGE, (int(fields[11]) + int(fields[12])) / TICKS)
+
+
+def proportional_bytes(pid: int) -> Optional[int]:
+    """The process's proportional set size (its share of each page it maps): forks that share
+    their parent's pages are not counted once each, as their resident sizes would be."""
+    try:
+        with open("/proc/%d/smaps_rollup" % pid) as f:
+            for line in f:
+                if line.startswith("Pss:"):
+                    return int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        pass
+    return None

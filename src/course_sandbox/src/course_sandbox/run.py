@@ -1,0 +1,318 @@
+"""One sandbox for one milestone run, or one build: the entry points.
+
+RunSandbox (used by the trusted check, course_milestones.students): `prepare(command, env)`
+turns a student's command into one that runs inside the run's sandbox, with the student's own
+environment; `close()` ends every process in it. A watcher samples the sandbox twice a second:
+past the memory limit it ends the run; near the process or CPU limit it notes the hit, and the
+report (JSON, written by this trusted side) tells the grader which limit the student's code hit.
+
+run_oneshot (used by the grader's build): a command in a sandbox of its own, to its end.
+"""
+from __future__ import annotations
+
+import json
+import os
+import select
+import signal
+import subprocess
+import threading
+import time
+from typing import Callable, Dict, List, Optional, Sequence, Tuple
+
+from course_sandbox import commands, levels, procs
+from course_sandbox.policy import Policy
+
+WATCH_INTERVAL_S = 0.5
+START_TIMEOUT_S = 10.0
+KEEPER_EXIT_S = 5.0
+# The watcher samples: this share of the process limit counts as having reached it.
+PROCESS_SHARE_NOTED = 0.9
+# Variables of the trusted side a student process never gets.
+TRUSTED_VARS = ("COURSE_ARTIFACTS_DIR", "COURSE_SANDBOX_POLICY", "COURSE_WS_SETUP")
+# Variables of the run (its master, its token, unbuffered output) the student's processes do get.
+RUN_VARS = ("ROS_MASTER_URI", "ROS_HOSTNAME", "ROS_IP", "COURSE_RUN_TOKEN", "PYTHONUNBUFFERED", "QT_QPA_PLATFORM")
+CAPTURE_BYTES = 1024 * 1024
+CAPTURE_GRACE_S = 0.5
+
+
+def student_env(policy: Policy, env: Optional[Dict[str, str]] = None) -> Dict[str, str]:
+    """The environment of a student process: the student's own overlay environment (or, for
+    the reference, the check's), the run's variables, what the check set on purpose in `env`,
+    and its own HOME/ROS_HOME/ROS_LOG_DIR; never the trusted side's variables."""
+    given = dict(os.environ if env is None else env)
+    base = dict(policy.student_env) if policy.student_env is not None else dict(given)
+    for key in RUN_VARS:
+        if key in given:
+            base[key] = given[key]
+        else:
+            base.pop(key, None)
+    for key, value in given.items():  # what the check changed on purpose for this process
+        if os.environ.get(key) != value and key not in ("ROS_HOME", "ROS_LOG_DIR", "HOME"):
+            base[key] = value
+    for key in TRUSTED_VARS + ("DISPLAY",):
+        base.pop(key, None)
+    if policy.home:
+        base.update(HOME=policy.home, ROS_HOME=policy.home, ROS_LOG_DIR=os.path.join(policy.home, "log"))
+    return base
+
+
+class LimitHits:
+    """Which limits the sandbox's processes reached, as the watcher saw them (thread-safe)."""
+
+    def __init__(self) -> None:
+        self._lock = threading.Lock()
+        self.hits: Dict[str, str] = {}
+        self.peak_tasks = 0
+        self.peak_rss = 0
+
+    def note(self, limit: str, sentence: str) -> None:
+        with self._lock:
+            self.hits.setdefault(limit, sentence)
+
+    def sample(self, tasks: int, rss: int) -> None:
+        with self._lock:
+            self.peak_tasks = max(self.peak_tasks, tasks)
+            self.peak_rss = max(self.peak_rss, rss)
+
+    def as_dict(self) -> Dict:
+        with self._lock:
+            return {"hits": dict(self.hits), "peak_tasks": self.peak_tasks, "peak_rss_bytes": self.peak_rss}
+
+
+def judge_usage(policy: Policy, usages: Sequence[procs.Usage], hits: LimitHits,
+                shared_memory: Callable[[], int] = lambda: 0) -> bool:
+    """Note the limits `usages` (one sample of the sandbox's processes) reach; True when the run
+    must end (memory). Resident sizes count a page shared by forks once per fork, so past the
+    limit `shared_memory()` (the proportional total, slower to read) decides."""
+    limits = policy.limits
+    tasks = sum(u.tasks for u in usages)
+    rss = sum(u.rss_bytes for u in usages)
+    if rss > limits.memory_bytes:
+        rss = min(rss, shared_memory())
+    hits.sample(tasks, rss)
+    if tasks >= limits.processes * PROCESS_SHARE_NOTED:
+        hits.note("processes", "your code reached the process limit (%d processes and threads); "
+                  "further fork()s failed" % limits.processes)
+    if any(u.cpu_seconds >= limits.cpu_seconds - 1 for u in usages):
+        hits.note("cpu", "a process of yours used its %d s of CPU time and was stopped (SIGXCPU)"
+                  % limits.cpu_seconds)
+    if rss > limits.memory_bytes:
+        hits.note("memory", "your processes used more than %d MiB of memory together; they were all ended"
+                  % (limits.memory_bytes // (1024 * 1024)))
+        return True
+    return False
+
+
+class RunSandbox:
+    """The sandbox of one milestone run (see the module docstring). Create it in a thread that
+    lives as long as the run (the main thread): the keeper dies with the thread that started it."""
+
+    def __init__(self, policy: Policy) -> None:
+        self.policy = policy
+        self.hits = LimitHits()
+        self._lock = threading.Lock()
+        self._keeper: Optional[subprocess.Popen] = None
+        self._init_pid = 0
+        self._namespace: Optional[str] = None
+        self._entered: List[subprocess.Popen] = []
+        self._closed = threading.Event()
+        self._watcher: Optional[threading.Thread] = None
+
+    @property
+    def level(self) -> str:
+        return self.policy.level
+
+    def _start_keeper(self) -> None:
+        """Start the keeper and wait for its namespace init (bubblewrap's child, pid 1 inside)."""
+        self._keeper = subprocess.Popen(commands.keeper_command(self.policy), stdin=subprocess.DEVNULL,
+                                        stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, start_new_session=True)
+        deadline = time.monotonic() + START_TIMEOUT_S
+        while time.monotonic() < deadline:
+            for child in procs.descendants(self._keeper.pid):
+                if procs.namespace_pid(child) == 1:
+                    self._init_pid, self._namespace = child, procs.pid_namespace(child)
+                    return
+            if self._keeper.poll() is not None:
+                break
+            time.sleep(0.005)
+        error = b""
+        if self._keeper.poll() is not None:
+            error = self._keeper.stderr.read() or b""
+        self._kill_keeper()
+        raise RuntimeError("the sandbox did not start: %s" % error.decode(errors="replace").strip())
+
+    def _ensure_started(self) -> None:
+        with self._lock:
+            if self._closed.is_set():
+                raise RuntimeError("the sandbox is closed")
+            if levels.uses_namespaces(self.level) and self._keeper is None:
+                self._start_keeper()
+            if self._watcher is None:
+                self._watcher = threading.Thread(target=self._watch, name="sandbox-watch", daemon=True)
+                self._watcher.start()
+
+    def prepare(self, command: Sequence[str], env: Optional[Dict[str, str]] = None,
+                cwd: Optional[str] = None) -> Tuple[List[str], Dict[str, str], Optional[str]]:
+        """(argv, env, cwd) that run `command` in this run's sandbox as a student process; pass
+        them to subprocess.Popen."""
+        self._ensure_started()
+        cwd = cwd or self.policy.home or "/"
+        argv = commands.enter_command(self.policy, self._init_pid, command, cwd)
+        popen_cwd = None if levels.uses_namespaces(self.level) else cwd
+        return argv, student_env(self.policy, env), popen_cwd
+
+    def run_captured(self, command: Sequence[str], timeout: float = 30.0,
+                     env: Optional[Dict[str, str]] = None) -> Tuple[Optional[int], bytes]:
+        """Run `command` in the sandbox to its end: its exit code (None past `timeout`) and its
+        standard output (at most 1 MiB; the rest is dropped)."""
+        argv, env, cwd = self.prepare(command, env)
+        proc = subprocess.Popen(argv, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+                                env=env, cwd=cwd, start_new_session=True)
+        return _collect(proc, timeout)
+
+    def processes(self) -> List[int]:
+        """The host pids of every process in the sandbox (its namespace init excluded)."""
+        if self._namespace is None:
+            return []
+        return [pid for pid in procs.members(self._namespace) if pid != self._init_pid]
+
+    def host_pid(self, namespace_pid: int) -> Optional[int]:
+        """The host pid of the sandbox's process whose pid inside the sandbox is `namespace_pid`
+        (what a node's getPid answers), or None. Without namespaces pids are the same."""
+        if self._namespace is None:
+            return namespace_pid
+        for pid in self.processes():
+            if procs.namespace_pid(pid) == namespace_pid:
+                return pid
+        return None
+
+    def _watch(self) -> None:
+        while not self._closed.wait(WATCH_INTERVAL_S):
+            pids = self.processes()
+            usages = [u for u in (procs.usage(pid) for pid in pids) if u is not None]
+            if usages and judge_usage(self.policy, usages, self.hits,
+                                      lambda: sum(procs.proportional_bytes(pid) or 0 for pid in pids)):
+                self.end_processes()
+                self.write_report()
+
+    def end_processes(self) -> None:
+        """Kill every process in the sandbox now (the keeper stays: later starts still work)."""
+        for pid in self.processes():
+            try:
+                os.kill(pid, signal.SIGKILL)
+            except (ProcessLookupError, PermissionError):
+                pass
+
+    def _kill_keeper(self) -> None:
+        if self._keeper is None:
+            return
+        for pid in [self._init_pid] if self._init_pid else []:
+            try:
+                os.kill(pid, signal.SIGKILL)  # the namespace's init: everything in it dies with it
+            except (ProcessLookupError, PermissionError):
+                pass
+        try:  # bubblewrap reaps its init and exits; only if it does not, kill it too
+            self._keeper.wait(KEEPER_EXIT_S)
+        except subprocess.TimeoutExpired:
+            try:
+                os.killpg(self._keeper.pid, signal.SIGKILL)
+            except (ProcessLookupError, PermissionError):
+                pass
+            self._keeper.wait()
+        self._keeper.stderr.close()
+
+    def write_report(self) -> None:
+        if not self.policy.report:
+            return
+        data = dict(self.hits.as_dict(), level=self.level,
+                    isolation=levels.describe(self.level, self.policy.user),
+                    limits=self.policy.limits._asdict())
+        tmp = self.policy.report + ".tmp"
+        with open(tmp, "w") as f:
+            json.dump(data, f, indent=1, sort_keys=True)
+        os.replace(tmp, self.policy.report)
+
+    def close(self) -> None:
+        """End every process of the sandbox, whatever it did, and write the report."""
+        if self._closed.is_set():
+            return
+        self._closed.set()
+        with self._lock:
+            if levels.uses_namespaces(self.level):
+                self._kill_keeper()
+        if self._watcher is not None:
+            self._watcher.join(5)
+        self.write_report()
+
+    def __enter__(self) -> "RunSandbox":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+
+def _collect(proc: subprocess.Popen, timeout: float) -> Tuple[Optional[int], bytes]:
+    """A process's exit code (None past `timeout`: it is killed) and its first CAPTURE_BYTES of
+    output. Reading stops at end of output, or shortly after the process exits even if something
+    it left behind still holds the pipe."""
+    fd = proc.stdout.fileno()
+    deadline = time.monotonic() + timeout
+    data = bytearray()
+    exited_at: Optional[float] = None
+    while True:
+        now = time.monotonic()
+        if exited_at is None and proc.poll() is not None:
+            exited_at = now
+        if now > deadline or (exited_at is not None and now - exited_at > CAPTURE_GRACE_S):
+            break
+        ready, _, _ = select.select([fd], [], [], 0.05)
+        if not ready:
+            continue
+        chunk = os.read(fd, 65536)
+        if not chunk:
+            try:
+                proc.wait(max(0.0, deadline - time.monotonic()))
+            except subprocess.TimeoutExpired:
+                pass
+            break
+        data += chunk[:max(0, CAPTURE_BYTES - len(data))]
+    code = proc.poll()
+    if code is None:
+        try:
+            os.killpg(proc.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+        proc.wait()
+    proc.stdout.close()
+    return code, bytes(data)
+
+
+def run_oneshot(policy: Policy, command: Sequence[str], cwd: str, env: Dict[str, str], log_path: str,
+                timeout: float) -> Optional[int]:
+    """Run `command` (a build) in a sandbox of its own with output to `log_path`: its exit code,
+    or None past `timeout`. Nothing it started outlives it."""
+    with open(log_path, "wb") as log:
+        proc = subprocess.Popen(commands.oneshot_command(policy, command, cwd), cwd=cwd, env=env,
+                                stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT,
+                                start_new_session=True)
+        try:
+            code: Optional[int] = proc.wait(timeout)
+        except subprocess.TimeoutExpired:
+            code = None
+        finally:
+            for pid in procs.descendants(proc.pid) + [proc.pid]:
+                try:
+                    os.kill(pid, signal.SIGKILL)
+                except (ProcessLookupError, PermissionError):
+                    pass
+            proc.wait()
+    return code
+
+
+def capture_oneshot(policy: Policy, command: Sequence[str], cwd: str, env: Dict[str, str],
+                    timeout: float = 60.0) -> Tuple[Optional[int], bytes]:
+    """Run `command` in a sandbox of its own: exit code (None past `timeout`) and stdout (1 MiB at most)."""
+    proc = subprocess.Popen(commands.oneshot_command(policy, command, cwd), cwd=cwd, env=env,
+                            stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+                            start_new_session=True)
+    return _collect(proc, timeout)

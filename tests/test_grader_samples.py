@@ -38,7 +38,9 @@ class SampleGrading:
 
     def __init__(self) -> None:
         self.folder = Path(tempfile.mkdtemp(prefix="grader-samples-"))
+        self.folder.chmod(0o755)  # the sandbox user passes through it to each student's workspace
         self.out = self.folder / "grades"
+        self.checkout_before = checkout_state()
         self.grader = NodeProcess(["rosrun", "course_grader", "grade"] + [str(s) for s in SAMPLES]
                                   + ["--only-from", "expected.json", "--jobs", str(JOBS), "--out", str(self.out)],
                                   stdin=subprocess.DEVNULL, log_path=str(self.folder / "grade.log"))
@@ -52,6 +54,14 @@ class SampleGrading:
         its folder."""
         self.grader.stop(STOP_TIMEOUT_S)
         shutil.rmtree(self.folder, ignore_errors=True)
+
+
+def checkout_state() -> str:
+    """What `git status` and `git diff` say of the course checkout (a sample must change neither)."""
+    def git(*args: str) -> str:
+        return subprocess.run(["git", "-C", str(ROOT)] + list(args), stdout=subprocess.PIPE, text=True,
+                              check=False).stdout
+    return git("status", "--porcelain", "--untracked-files=all") + git("diff")
 
 
 GRADING = pytest.StashKey[SampleGrading]()
@@ -112,15 +122,31 @@ def test_outputs_for_the_class(graded: Path) -> None:
 
 
 def test_nothing_left_running(graded: Path) -> None:
-    """Every run's processes carry COURSE_ARTIFACTS_DIR under the output folder: none may survive."""
+    """Every run's trusted processes carry COURSE_ARTIFACTS_DIR under the output folder, and every
+    sandboxed student process has its workspace mounted from there (whatever it did to its
+    environment): none may survive."""
     marker = str(graded).encode()
     left = []
     for pid in filter(str.isdigit, os.listdir("/proc")):
         try:
             environ = Path("/proc", pid, "environ").read_bytes()
+            mounts = Path("/proc", pid, "mountinfo").read_bytes()
             cmdline = Path("/proc", pid, "cmdline").read_bytes().replace(b"\0", b" ")
         except OSError:
             continue
-        if marker in environ and int(pid) != os.getpid():
+        if (marker in environ or marker in mounts) and int(pid) != os.getpid():
             left.append("%s %s" % (pid, cmdline.decode(errors="replace")))
     assert not left, "processes left running after grading:\n" + "\n".join(left)
+
+
+def test_the_course_checkout_is_unchanged(request: pytest.FixtureRequest, graded: Path) -> None:
+    """No sample (an attack rewrites the check, writes into the course) changed the checkout."""
+    grading = request.config.stash[GRADING]
+    assert checkout_state() == grading.checkout_before, "the grading changed the course checkout"
+
+
+def test_every_verdict_says_which_isolation_was_in_force(graded: Path) -> None:
+    for sample in SAMPLES:
+        results = json.loads((graded / sample.name / "results.json").read_text())
+        assert "isolation: " in results["output"], sample.name
+    assert "Isolation of student code: " in (graded / "report.html").read_text()

@@ -39,7 +39,7 @@ ROSDEP_KEYS = {
 }
 # ROS packages whose Python module has the package's name (Debian's ROS, or ours).
 ROS_MODULES = {"rospy", "rosgraph", "roslib", "roslaunch", "rostest", "rosnode", "rosservice",
-               "rostopic", "rosbag", "rosmsg", "tf", "tf2_ros", "actionlib", "genpy", "catkin",
+               "rostopic", "rosbag", "rosmsg", "tf", "tf2_ros", "actionlib", "genpy", "genmsg", "catkin",
                "topic_tools", "rosunit", "message_filters"}
 
 

@@ -13,7 +13,7 @@ import os
 import pwd
 from typing import Dict, List, Optional, Sequence
 
-from course_sandbox import levels
+from course_sandbox import access, levels
 from course_sandbox.policy import DEFAULT_USER, Policy, normalised
 
 SANDBOX_USER_VAR = "COURSE_SANDBOX_USER"
@@ -35,6 +35,21 @@ class SandboxPlan:
         # A hidden folder holding the course (the grader's home) still shows the course: the
         # sandbox mounts the deeper path last.
         self.hidden = [p for p in hidden if p not in ("/", self.course_root)]
+        self._check_reachable()
+
+    def _check_reachable(self) -> None:
+        """Student code must read the course and write below the output folder: refuse, with
+        what to do, when the sandbox user cannot even reach them (a 0700 home on the way)."""
+        if self.level == levels.NONE:
+            return
+        can_traverse = access.traverser(*access.identity(self.level, self.user))
+        for what, path in (("the course checkout", self.course_root), ("the output folder", self.out)):
+            blocked = access.unreachable_part(path, can_traverse)
+            if blocked:
+                raise levels.Unavailable(
+                    "the sandbox user %s cannot reach %s at %s: %s does not let it through (mode %o). "
+                    "Put it where other users can pass (e.g. /srv or /opt), or `chmod o+x %s`"
+                    % (self.user, what, path, blocked, os.stat(blocked).st_mode & 0o7777, blocked))
 
     def describe(self) -> str:
         return levels.describe(self.level, self.user)

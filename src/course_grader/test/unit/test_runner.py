@@ -31,6 +31,7 @@ def _folder(tmp_path, name, packages):
 
 def test_each_submission_gets_its_verdicts_and_one_progress_line(tmp_path, monkeypatch):
     monkeypatch.setattr(runner, "run_rostest", _fake_rostest)
+    monkeypatch.setenv("COURSE_SANDBOX_LEVEL", "none")  # fakes run nothing; tmp_path is in a 0700 folder
     monkeypatch.setattr(workspace, "course_packages", lambda: {"turtlesim", "course_testkit"})
     monkeypatch.setattr(workspace, "course_setup", lambda: "/nowhere/setup.bash")
     monkeypatch.setattr(workspace, "course_site", lambda setup: "")

@@ -19,7 +19,7 @@ A node's terminal (a pseudo-terminal the check opened) reaches it as an inherite
 from __future__ import annotations
 
 import os
-from typing import List, Sequence
+from typing import Callable, List, Sequence, Tuple
 
 from course_sandbox import levels
 from course_sandbox.policy import Limits, Policy
@@ -31,6 +31,8 @@ IGNORE_STOP_SIGNALS = ["env", "--ignore-signal=INT,TERM"]
 # student's processes leave and ignores every signal a student could send it, so the namespace
 # lives until the trusted side kills it (a PID namespace's init gets no signal it does not handle
 # from inside, SIGKILL included).
+KEEPER_PYTHON = "/usr/bin/python3"
+KEEPER_NAME = "python3"  # its /proc/<pid>/comm once bubblewrap has exec'd it
 KEEPER_INIT = ("import os, signal, time\n"
                "for s in set(signal.Signals) - {signal.SIGKILL, signal.SIGSTOP, signal.SIGCHLD}:\n"
                "    signal.signal(s, signal.SIG_IGN)\n"
@@ -68,11 +70,21 @@ def _depth(path: str) -> int:
     return len([part for part in path.split(os.sep) if part])
 
 
-def view_args(policy: Policy) -> List[str]:
+def _ancestors(path: str) -> List[str]:
+    """'/a/b/c' -> ['/a', '/a/b'] (not / and not the path itself)."""
+    parts = [p for p in path.split(os.sep) if p]
+    return ["/" + "/".join(parts[:i]) for i in range(1, len(parts))]
+
+
+def view_args(policy: Policy, can_traverse: Callable[[str], bool]) -> List[str]:
     """bubblewrap's filesystem view: the system read-only, a private /tmp and /dev/shm, the
-    hidden paths empty, the readable ones read-only and the writable ones writable. Mounts go
-    from the shallowest path to the deepest, so a deeper rule wins over the folder it is in
-    (the student's workspace inside the hidden output folder)."""
+    hidden paths empty, the readable ones read-only and the writable ones writable.
+
+    Mounts go from the shallowest path to the deepest, so a deeper rule wins over the folder it
+    is in (the student's workspace inside the hidden output folder). bubblewrap runs as the
+    sandbox user: a hidden path that user cannot reach (below a 0700 home) is unreadable already
+    and left as it is (bubblewrap could not mount over it); the bound folders must be reachable
+    (the grader checks that before it starts: course_grader.sandboxing)."""
     args = ["--ro-bind", "/", "/", "--proc", "/proc", "--tmpfs", "/dev"]
     for dev in DEVICES:
         if os.path.exists("/dev/" + dev):
@@ -81,14 +93,17 @@ def view_args(policy: Policy) -> List[str]:
              "--symlink", "/proc/self/fd/1", "/dev/stdout", "--symlink", "/proc/self/fd/2", "/dev/stderr",
              "--size", str(SHM_BYTES), "--tmpfs", "/dev/shm",
              "--size", str(policy.limits.tmp_bytes), "--tmpfs", "/tmp"]
-    rules = []
+    binds = [(path, 1, ["--ro-bind", path, path]) for path in policy.readable if os.path.isdir(path)]
+    binds += [(path, 2, ["--bind", path, path]) for path in policy.writable if os.path.isdir(path)]
+    made = ["/tmp"] + [path for path, _, _ in binds]  # below these, bubblewrap makes what it needs
+
+    def reachable(path: str) -> bool:
+        return all(can_traverse(folder) or any(folder == m or folder.startswith(m + os.sep) for m in made)
+                   for folder in _ancestors(path))
+    rules: List[Tuple[str, int, List[str]]] = list(binds)
     for path in policy.hidden:
-        if os.path.isdir(path):
-            rules.append((path, 0, ["--tmpfs", path]))
-        elif os.path.exists(path):
-            rules.append((path, 0, ["--ro-bind", "/dev/null", path]))
-    rules += [(path, 1, ["--ro-bind", path, path]) for path in policy.readable if os.path.exists(path)]
-    rules += [(path, 2, ["--bind", path, path]) for path in policy.writable if os.path.isdir(path)]
+        if os.path.exists(path) and reachable(path):
+            rules.append((path, 0, ["--tmpfs", path] if os.path.isdir(path) else ["--ro-bind", "/dev/null", path]))
     for _, _, rule in sorted(rules, key=lambda r: (_depth(r[0]), r[1])):
         args += rule
     return args
@@ -99,10 +114,11 @@ def namespace_args() -> List[str]:
             "--die-with-parent"]
 
 
-def keeper_command(policy: Policy) -> List[str]:
+def keeper_command(policy: Policy, can_traverse: Callable[[str], bool]) -> List[str]:
     """The process that holds one run's namespaces (levels with namespaces only)."""
-    return (user_prefix(policy) + IGNORE_STOP_SIGNALS + ["bwrap"] + namespace_args() + view_args(policy)
-            + ["--as-pid-1", "--", "/usr/bin/python3", "-I", "-S", "-c", KEEPER_INIT])
+    return (user_prefix(policy) + IGNORE_STOP_SIGNALS + ["bwrap"] + namespace_args()
+            + view_args(policy, can_traverse)
+            + ["--as-pid-1", "--", KEEPER_PYTHON, "-I", "-S", "-c", KEEPER_INIT])
 
 
 def enter_command(policy: Policy, init_pid: int, command: Sequence[str], cwd: str) -> List[str]:
@@ -116,10 +132,11 @@ def enter_command(policy: Policy, init_pid: int, command: Sequence[str], cwd: st
                "--wd=" + cwd, "--"] + inner)
 
 
-def oneshot_command(policy: Policy, command: Sequence[str], cwd: str) -> List[str]:
+def oneshot_command(policy: Policy, command: Sequence[str], cwd: str,
+                    can_traverse: Callable[[str], bool]) -> List[str]:
     """`command` in a sandbox of its own (a build): it ends when the command ends."""
     inner = limits_prefix(policy.limits, policy.level) + list(command)
     if not levels.uses_namespaces(policy.level):
         return user_prefix(policy) + inner
-    return (user_prefix(policy) + ["bwrap"] + namespace_args() + view_args(policy) + ["--chdir", cwd, "--"]
-            + inner)
+    return (user_prefix(policy) + ["bwrap"] + namespace_args() + view_args(policy, can_traverse)
+            + ["--chdir", cwd, "--"] + inner)

@@ -39,6 +39,15 @@ def descendants(root: int) -> List[int]:
     return found
 
 
+def command_name(pid: int) -> Optional[str]:
+    """The process's command name (/proc/<pid>/comm), or None when it is gone."""
+    try:
+        with open("/proc/%d/comm" % pid) as f:
+            return f.read().strip()
+    except OSError:
+        return None
+
+
 def pid_namespace(pid: int) -> Optional[str]:
     try:
         return os.readlink("/proc/%d/ns/pid" % pid)

@@ -3,8 +3,9 @@
 RunSandbox (used by the trusted check, course_milestones.students): `prepare(command, env)`
 turns a student's command into one that runs inside the run's sandbox, with the student's own
 environment; `close()` ends every process in it. A watcher samples the sandbox twice a second:
-past the memory limit it ends the run; near the process or CPU limit it notes the hit, and the
-report (JSON, written by this trusted side) tells the grader which limit the student's code hit.
+past the memory limit or near the process limit it ends the run's processes; near the CPU limit
+it notes the hit; the report (JSON, written by this trusted side) tells the grader which limit
+the student's code hit.
 
 run_oneshot (used by the grader's build): a command in a sandbox of its own, to its end.
 """
@@ -20,6 +21,7 @@ import time
 from typing import Callable, Dict, List, Optional, Sequence, Tuple
 
 from course_sandbox import commands, levels, procs
+from course_sandbox.access import identity, traverser
 from course_sandbox.policy import Policy
 
 WATCH_INTERVAL_S = 0.5
@@ -81,8 +83,8 @@ class LimitHits:
 
 def judge_usage(policy: Policy, usages: Sequence[procs.Usage], hits: LimitHits,
                 shared_memory: Callable[[], int] = lambda: 0) -> bool:
-    """Note the limits `usages` (one sample of the sandbox's processes) reach; True when the run
-    must end (memory). Resident sizes count a page shared by forks once per fork, so past the
+    """Note the limits `usages` (one sample of the sandbox's processes) reach; True when the run's
+    processes must end (memory, processes). Resident sizes count a page shared by forks once per fork, so past the
     limit `shared_memory()` (the proportional total, slower to read) decides."""
     limits = policy.limits
     tasks = sum(u.tasks for u in usages)
@@ -90,17 +92,21 @@ def judge_usage(policy: Policy, usages: Sequence[procs.Usage], hits: LimitHits,
     if rss > limits.memory_bytes:
         rss = min(rss, shared_memory())
     hits.sample(tasks, rss)
+    end = False
     if tasks >= limits.processes * PROCESS_SHARE_NOTED:
+        # A fork bomb at its limit retries fork() in every process: it would starve the other
+        # runs of CPU, so its run ends here.
         hits.note("processes", "your code reached the process limit (%d processes and threads); "
-                  "further fork()s failed" % limits.processes)
+                  "all its processes were ended" % limits.processes)
+        end = True
     if any(u.cpu_seconds >= limits.cpu_seconds - 1 for u in usages):
         hits.note("cpu", "a process of yours used its %d s of CPU time and was stopped (SIGXCPU)"
                   % limits.cpu_seconds)
     if rss > limits.memory_bytes:
         hits.note("memory", "your processes used more than %d MiB of memory together; they were all ended"
                   % (limits.memory_bytes // (1024 * 1024)))
-        return True
-    return False
+        end = True
+    return end
 
 
 class RunSandbox:
@@ -124,12 +130,19 @@ class RunSandbox:
 
     def _start_keeper(self) -> None:
         """Start the keeper and wait for its namespace init (bubblewrap's child, pid 1 inside)."""
-        self._keeper = subprocess.Popen(commands.keeper_command(self.policy), stdin=subprocess.DEVNULL,
-                                        stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, start_new_session=True)
+        argv = commands.keeper_command(self.policy, traverser(*identity(self.policy.level, self.policy.user)))
+        self._keeper = subprocess.Popen(argv, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                                        stderr=subprocess.PIPE, start_new_session=True)
+        self._wait_for_init()
+
+    def _wait_for_init(self) -> None:
+        """Wait until bubblewrap's child, pid 1 inside, has set the view up and become the
+        keeper's init (it is pid 1 from the start, while it still mounts: no process may join
+        before it runs KEEPER_INIT)."""
         deadline = time.monotonic() + START_TIMEOUT_S
         while time.monotonic() < deadline:
             for child in procs.descendants(self._keeper.pid):
-                if procs.namespace_pid(child) == 1:
+                if procs.namespace_pid(child) == 1 and procs.command_name(child) == commands.KEEPER_NAME:
                     self._init_pid, self._namespace = child, procs.pid_namespace(child)
                     return
             if self._keeper.poll() is not None:
@@ -292,9 +305,7 @@ def run_oneshot(policy: Policy, command: Sequence[str], cwd: str, env: Dict[str,
     """Run `command` (a build) in a sandbox of its own with output to `log_path`: its exit code,
     or None past `timeout`. Nothing it started outlives it."""
     with open(log_path, "wb") as log:
-        proc = subprocess.Popen(commands.oneshot_command(policy, command, cwd), cwd=cwd, env=env,
-                                stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT,
-                                start_new_session=True)
+        proc = _start_oneshot(policy, command, cwd, env, stdout=log, stderr=subprocess.STDOUT)
         try:
             code: Optional[int] = proc.wait(timeout)
         except subprocess.TimeoutExpired:
@@ -312,7 +323,10 @@ def run_oneshot(policy: Policy, command: Sequence[str], cwd: str, env: Dict[str,
 def capture_oneshot(policy: Policy, command: Sequence[str], cwd: str, env: Dict[str, str],
                     timeout: float = 60.0) -> Tuple[Optional[int], bytes]:
     """Run `command` in a sandbox of its own: exit code (None past `timeout`) and stdout (1 MiB at most)."""
-    proc = subprocess.Popen(commands.oneshot_command(policy, command, cwd), cwd=cwd, env=env,
-                            stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
-                            start_new_session=True)
+    proc = _start_oneshot(policy, command, cwd, env, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)
     return _collect(proc, timeout)
+
+
+def _start_oneshot(policy: Policy, command: Sequence[str], cwd: str, env: Dict[str, str], **streams) -> subprocess.Popen:
+    argv = commands.oneshot_command(policy, command, cwd, traverser(*identity(policy.level, policy.user)))
+    return subprocess.Popen(argv, cwd=cwd, env=env, stdin=subprocess.DEVNULL, start_new_session=True, **streams)

@@ -44,6 +44,23 @@ def free_port(host: str = "127.0.0.1") -> int:
         return sock.getsockname()[1]
 
 
+def pids_with_token(token: str) -> List[int]:
+    """Every live process whose environment holds TOKEN_VAR=token (never this process)."""
+    needle = ("%s=%s" % (TOKEN_VAR, token)).encode()
+    found = []
+    for pid in procs.pids():
+        if pid == os.getpid():
+            continue
+        try:
+            with open("/proc/%d/environ" % pid, "rb") as f:
+                variables = f.read().split(b"\0")
+        except OSError:  # gone, or not ours
+            continue
+        if needle in variables:
+            found.append(pid)
+    return found
+
+
 def _signal_all(pids: Iterable[int], sig: int) -> None:
     for pid in pids:
         try:

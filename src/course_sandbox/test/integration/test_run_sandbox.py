@@ -1,0 +1,134 @@
+"""The sandbox for real (bubblewrap, setpriv, prlimit): what student code inside a run can see,
+write and signal, and that nothing of it survives the run, whatever it did."""
+import os
+import pwd
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+import pytest
+
+from course_sandbox import levels
+from course_sandbox.policy import DEFAULT_USER, Limits, Policy
+from course_sandbox.run import RunSandbox, capture_oneshot
+
+ROOT = os.geteuid() == 0
+LEVEL = levels.detect(DEFAULT_USER)
+pytestmark = pytest.mark.skipif(not levels.uses_namespaces(LEVEL),
+                                reason="this machine refuses namespaces (%s)" % LEVEL)
+
+
+@pytest.fixture
+def place():
+    """An output folder with two students' work, a course folder, and the run's home for alice,
+    in a folder the sandbox user can reach (pytest's own tmp_path is in a 0700 folder)."""
+    tmp_path = Path(tempfile.mkdtemp(prefix="sandbox-test-"))
+    os.chmod(tmp_path, 0o755)
+    yield from _fill(tmp_path)
+    shutil.rmtree(tmp_path, ignore_errors=True)
+
+
+def _fill(tmp_path):
+    out = tmp_path / "out"
+    home = out / "_work" / "alice" / "runs" / "chatter" / "student"
+    home.mkdir(parents=True)
+    (out / "_work" / "bob").mkdir(parents=True)
+    (out / "_work" / "bob" / "secret.py").write_text("bob's solution")
+    course = tmp_path / "course"
+    course.mkdir()
+    (course / "check").write_text("the course's check")
+    if ROOT:
+        entry = pwd.getpwnam(DEFAULT_USER)
+        os.chown(home, entry.pw_uid, entry.pw_gid)
+    yield out, home, course
+
+
+@pytest.fixture
+def sandbox(place):
+    out, home, course = place
+    box = RunSandbox(Policy(LEVEL, DEFAULT_USER, [str(home)], [str(out)], [str(course)], str(home),
+                            report=str(out / "sandbox.json")))
+    yield box
+    box.close()
+
+
+def shell(box, script, timeout=20.0):
+    code, out = box.run_captured(["sh", "-c", script], timeout)
+    return code, out.decode()
+
+
+def test_student_code_sees_only_its_own_processes_and_files(sandbox, place):
+    out, home, course = place
+    code, text = shell(sandbox, "id -un; ps -e -o pid= | wc -l; ls %s/_work; cat %s/_work/bob/secret.py; "
+                                "cat %s/check; touch %s/check %s/x; touch %s/mine && echo wrote-home"
+                       % (out, out, course, course, "/usr", home))
+    lines = text.splitlines()
+    assert code is not None
+    if ROOT:
+        assert lines[0] == DEFAULT_USER, "root's grader must not run student code as root"
+    assert int(lines[1]) <= 4, "a sandbox sees its own processes only (init, sh, ps, wc): %s" % text
+    assert "bob" not in text and "bob's solution" not in text
+    assert "the course's check" in text, "the course stays readable"
+    assert (course / "check").read_text() == "the course's check" and not os.path.exists("/usr/x")
+    assert "wrote-home" in text and (home / "mine").exists()
+
+
+def test_ctrl_c_reaches_the_node_and_its_exit_code_comes_back(sandbox, place):
+    _, home, _ = place
+    script = home / "node.py"
+    script.write_text("import signal, sys, time\n"
+                      "def bye(*_):\n    print('bye', flush=True)\n    sys.exit(3)\n"
+                      "signal.signal(signal.SIGINT, bye)\nprint('ready', flush=True)\n"
+                      "while True:\n    time.sleep(0.05)\n")
+    argv, env, cwd = sandbox.prepare([sys.executable if os.path.exists(sys.executable) else "python3", str(script)])
+    proc = subprocess.Popen(argv, env=env, cwd=cwd, stdout=subprocess.PIPE, start_new_session=True)
+    assert proc.stdout.readline() == b"ready\n"
+    os.killpg(proc.pid, signal.SIGINT)
+    assert proc.wait(10) == 3 and proc.stdout.read() == b"bye\n"
+    proc.stdout.close()
+
+
+def test_nothing_outlives_the_run_whatever_it_did(sandbox):
+    helper = ("import os, signal, time\n"
+              "if os.fork() == 0:\n    os.setsid()\n    if os.fork() == 0:\n"
+              "        for s in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):\n"
+              "            signal.signal(s, signal.SIG_IGN)\n"
+              "        os.execve('/bin/sleep', ['sleep', '1000'], {})\n    os._exit(0)\n")
+    code, text = shell(sandbox, "kill -9 -1; kill -9 1; echo still-here")
+    assert "still-here" in text, "the sandbox's init survives what its processes send it"
+    code, _ = sandbox.run_captured(["python3", "-c", helper])
+    assert code == 0
+    left = sandbox.processes()
+    assert left, "the helper runs until the run ends"
+    sandbox.close()
+    for pid in left:
+        assert not os.path.exists("/proc/%d" % pid) or open("/proc/%d/stat" % pid).read().split()[2] == "Z"
+
+
+def test_a_fork_bomb_is_contained_noted_and_ended(place):
+    out, home, course = place
+    report = out / "sandbox.json"
+    with RunSandbox(Policy(LEVEL, DEFAULT_USER, [str(home)], [str(out)], [str(course)], str(home),
+                           limits=Limits(processes=64), report=str(report))) as box:
+        code, text = box.run_captured(["python3", "-c",
+                                       "import os, time\nn = 0\ntry:\n    while n < 10000:\n"
+                                       "        if os.fork() == 0:\n            time.sleep(20)\n"
+                                       "            os._exit(0)\n        n += 1\n"
+                                       "except OSError as e:\n    print(n, e.errno, flush=True)\n"
+                                       "time.sleep(20)\n"], timeout=15)
+        assert text and int(text.split()[0]) < 64, "fork() must fail at the limit: %r" % text
+        assert "processes" in box.hits.hits
+        assert code is not None and code < 0, "the watcher ends a run at its process limit"
+    assert "process limit" in report.read_text()
+
+
+def test_a_build_sandbox_writes_only_its_workspace(place):
+    out, home, course = place
+    policy = Policy(LEVEL, DEFAULT_USER, [str(home)], [str(out)], [str(course)], str(home))
+    code, text = capture_oneshot(policy, ["sh", "-c", "echo x > %s/built; echo y > %s/evil; ls %s/_work; echo done"
+                                          % (home, course, out)], str(home), dict(os.environ))
+    assert code == 0 and b"done" in text and b"bob" not in text
+    assert (home / "built").exists() and not (course / "evil").exists()

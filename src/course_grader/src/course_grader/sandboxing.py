@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import os
 import pwd
-from typing import Dict, List, Optional, Sequence
+from typing import Dict, Optional, Sequence
 
 from course_sandbox import access, levels
 from course_sandbox.policy import DEFAULT_USER, Policy, normalised
@@ -83,11 +83,13 @@ def parse_env(data: bytes) -> Dict[str, str]:
     return env
 
 
-def overlay_paths(course_env: Dict[str, str], ws: str, python: bool = True) -> Dict[str, str]:
+def overlay_paths(course_env: Dict[str, str], ws: str) -> Dict[str, str]:
     """The trusted side's environment for grading the overlay `ws`: the course's, with the
-    overlay's packages found first (ROS_PACKAGE_PATH, CMAKE_PREFIX_PATH) and, with `python`, its
-    generated Python modules. Computed, never sourced: the overlay's setup.bash and env hooks are
-    the student's code."""
+    overlay's packages found first (ROS_PACKAGE_PATH, CMAKE_PREFIX_PATH: rospack and rosrun's
+    search), and nothing that would load the student's code into a trusted process (no
+    PYTHONPATH, LD_LIBRARY_PATH or PATH of the overlay: checks build message classes from the
+    .msg files, course_milestones.messages). Computed, never sourced: the overlay's setup.bash and
+    env hooks are the student's code."""
     env = dict(course_env)
 
     def prepend(var: str, value: str) -> None:
@@ -95,15 +97,4 @@ def overlay_paths(course_env: Dict[str, str], ws: str, python: bool = True) -> D
         env[var] = os.pathsep.join([value] + rest)
     prepend("ROS_PACKAGE_PATH", os.path.join(ws, "src"))
     prepend("CMAKE_PREFIX_PATH", os.path.join(ws, "devel"))
-    if python:
-        for site in sorted(_sites(ws)):
-            prepend("PYTHONPATH", site)
     return env
-
-
-def _sites(ws: str) -> List[str]:
-    lib = os.path.join(ws, "devel", "lib")
-    try:
-        return [os.path.join(lib, d, "dist-packages") for d in os.listdir(lib) if d.startswith("python3")]
-    except OSError:
-        return []

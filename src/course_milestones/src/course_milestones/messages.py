@@ -115,7 +115,7 @@ def _cached(kind: str, type_name: str) -> type:
     with _lock:
         key = (kind, type_name)
         if key not in _classes:
-            if imports_safely(pkg):
+            if system_package(pkg) and imports_safely(pkg):
                 _classes[key] = _imported(kind, pkg, base)
             else:
                 _classes[key] = _from_files(kind, pkg, base)
@@ -158,6 +158,19 @@ def trusted_path(path: str) -> bool:
     roots = _trusted_roots()
     real_roots = tuple(os.path.realpath(r) for r in roots)
     return os.path.isabs(path) and _under(path, roots) and _under(os.path.realpath(path), real_roots)
+
+
+def system_package(pkg: str) -> bool:
+    """Whether the package ROS finds for `pkg` is the system's (Debian's /usr/share, /opt/ros),
+    not a workspace's. A package of the course workspace may be shadowed by the student's
+    overlay of the same name (turtle_patrol, my_chatter): its Python module would still be the
+    course's (the check has no overlay on its Python path), so its classes come from the files
+    ROS finds, the student's."""
+    try:
+        path = os.path.realpath(_rospack().get_path(pkg))
+    except (rospkg.ResourceNotFound, OSError):
+        return False
+    return _under(path, ("/usr/share",) + _SYSTEM_ROS_ROOTS)
 
 
 def imports_safely(pkg: str) -> bool:

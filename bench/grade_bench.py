@@ -11,6 +11,7 @@
 
     python3 bench/grade_bench.py [--runs 20] [--class-size 30] [--jobs N]
     python3 bench/grade_bench.py --runs 0 --class-size 5     # only a small class
+    python3 bench/grade_bench.py --sandbox-cost 4 --rounds 2 # the sandbox's cost on a class
 """
 from __future__ import annotations
 
@@ -32,11 +33,20 @@ REFERENCE_TARGET_S = 60.0
 CLASS_TARGET_S_PER_30 = 30 * 60.0
 
 
-def grade(args: List[str], out: Path) -> Tuple[float, str]:
-    """Run the grader; its wall time and output (streamed to our stdout as it comes)."""
+def scratch_folder(prefix: str) -> Path:
+    """A temporary folder the sandbox user can pass through (mkdtemp makes it 0700)."""
+    folder = Path(tempfile.mkdtemp(prefix=prefix))
+    folder.chmod(0o755)
+    return folder
+
+
+def grade(args: List[str], out: Path, level: str = "") -> Tuple[float, str]:
+    """Run the grader (with `level`, COURSE_SANDBOX_LEVEL: a weaker sandbox); its wall time and
+    output (streamed to our stdout as it comes)."""
     started = time.monotonic()
+    env = dict(os.environ, COURSE_SANDBOX_LEVEL=level) if level else None
     proc = subprocess.Popen(["rosrun", "course_grader", "grade", "--out", str(out)] + args,
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
     lines = []
     for line in proc.stdout:
         lines.append(line)
@@ -60,7 +70,7 @@ def reference_runs(runs: int, jobs: List[str]) -> None:
     reasons: Dict[str, List[str]] = {}
     graded = 0
     for i in range(runs):
-        out = Path(tempfile.mkdtemp(prefix="grade-bench-"))
+        out = scratch_folder("grade-bench-")
         try:
             print("reference run %d/%d" % (i + 1, runs), flush=True)
             elapsed, _ = grade(jobs, out)
@@ -86,15 +96,21 @@ def student_packages() -> List[str]:
     return sorted({p for m in MILESTONES for p in m.packages})
 
 
+def make_class(scratch: Path, size: int) -> Path:
+    """`size` submissions, each a copy of the reference's exercise packages."""
+    classroom = scratch / "class"
+    packages = student_packages()
+    for n in range(1, size + 1):
+        for pkg in packages:
+            shutil.copytree(ROOT / "src" / pkg, classroom / ("student%02d" % n) / pkg, symlinks=True)
+    print("class of %d submissions (packages: %s)" % (size, " ".join(packages)), flush=True)
+    return classroom
+
+
 def class_run(size: int, jobs: List[str]) -> None:
-    scratch = Path(tempfile.mkdtemp(prefix="grade-bench-class-"))
+    scratch = scratch_folder("grade-bench-class-")
     try:
-        classroom = scratch / "class"
-        packages = student_packages()
-        for n in range(1, size + 1):
-            for pkg in packages:
-                shutil.copytree(ROOT / "src" / pkg, classroom / ("student%02d" % n) / pkg, symlinks=True)
-        print("class of %d submissions (packages: %s)" % (size, " ".join(packages)), flush=True)
+        classroom = make_class(scratch, size)
         elapsed, _ = grade(["--class", str(classroom)] + jobs, scratch / "grades")
         results = verdicts(scratch / "grades")
         failed = sorted("%s/%s" % key for key, test in results.items() if test["status"] != "passed")
@@ -106,14 +122,43 @@ def class_run(size: int, jobs: List[str]) -> None:
         shutil.rmtree(scratch, ignore_errors=True)
 
 
+def sandbox_cost(size: int, rounds: int, jobs: List[str]) -> None:
+    """The same class graded with the sandbox this machine gives and with limits alone
+    (COURSE_SANDBOX_LEVEL=none: no namespaces, no user switch), alternating which goes first;
+    the medians and their ratio."""
+    scratch = scratch_folder("grade-bench-sandbox-")
+    times: Dict[str, List[float]] = {"sandbox": [], "none": []}
+    try:
+        classroom = make_class(scratch, size)
+        for i in range(rounds):
+            order = ["none", "sandbox"] if i % 2 == 0 else ["sandbox", "none"]
+            for mode in order:
+                out = scratch / ("grades-%s-%d" % (mode, i))
+                elapsed, _ = grade(["--class", str(classroom)] + jobs, out, "none" if mode == "none" else "")
+                failed = [k for k, t in verdicts(out).items() if t["status"] != "passed"]
+                times[mode].append(elapsed)
+                print("round %d, %s: %.1f s, %d wrong verdicts" % (i + 1, mode, elapsed, len(failed)), flush=True)
+    finally:
+        shutil.rmtree(scratch, ignore_errors=True)
+    with_box, without = statistics.median(times["sandbox"]), statistics.median(times["none"])
+    print("\nclass of %d, %d rounds: sandbox median %.1f s, limits alone median %.1f s: ratio %.3f "
+          "(target <= 1.10)" % (size, rounds, with_box, without, with_box / without))
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--runs", type=int, default=20, help="reference gradings in a row (default 20)")
     parser.add_argument("--class-size", type=int, default=30, help="submissions in the class run (0: none)")
     parser.add_argument("--jobs", type=int, help="the grader's --jobs (default: the grader's own)")
+    parser.add_argument("--sandbox-cost", type=int, metavar="N", default=0,
+                        help="instead: a class of N graded with and without the sandbox, alternating")
+    parser.add_argument("--rounds", type=int, default=2, help="with --sandbox-cost: gradings per mode")
     opts = parser.parse_args()
     jobs = ["--jobs", str(opts.jobs)] if opts.jobs else []
     print("machine: %d cores, load average %s" % (os.cpu_count() or 0, " ".join("%.2f" % x for x in os.getloadavg())))
+    if opts.sandbox_cost:
+        sandbox_cost(opts.sandbox_cost, opts.rounds, jobs)
+        return 0
     if opts.runs:
         reference_runs(opts.runs, jobs)
     if opts.class_size:

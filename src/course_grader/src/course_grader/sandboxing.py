@@ -14,6 +14,7 @@ import pwd
 from typing import Dict, Optional, Sequence
 
 from course_sandbox import access, levels
+from course_testkit import isolation
 from course_sandbox.policy import DEFAULT_USER, Policy, normalised
 
 SANDBOX_USER_VAR = "COURSE_SANDBOX_USER"
@@ -52,7 +53,10 @@ class SandboxPlan:
                     % (self.user, what, path, blocked, os.stat(blocked).st_mode & 0o7777, blocked))
 
     def describe(self) -> str:
-        return levels.describe(self.level, self.user)
+        """The isolation in force, in words: the sandbox's level and the runs' network."""
+        network = ("each run has its own loopback-only network" if isolation.network_namespace_works()
+                   else "the runs share the machine's network (network namespaces refused)")
+        return "%s; %s" % (levels.describe(self.level, self.user), network)
 
     def give(self, path: str) -> str:
         """Make `path` (a folder tree the trusted side created) the student's: owned by the sandbox

@@ -34,22 +34,28 @@ TRUSTED_VARS = ("COURSE_ARTIFACTS_DIR", "COURSE_SANDBOX_POLICY", "COURSE_WS_SETU
 # Variables of the run (its master, its token, unbuffered output) the student's processes do get.
 RUN_VARS = ("ROS_MASTER_URI", "ROS_HOSTNAME", "ROS_IP", "COURSE_RUN_TOKEN", "PYTHONUNBUFFERED", "QT_QPA_PLATFORM")
 CAPTURE_BYTES = 1024 * 1024
+# The environment the trusted process (a check) started with: what it sets later is on purpose.
+_STARTING_ENV = dict(os.environ)
 CAPTURE_GRACE_S = 0.5
 
 
-def student_env(policy: Policy, env: Optional[Dict[str, str]] = None) -> Dict[str, str]:
+def student_env(policy: Policy, env: Optional[Dict[str, str]] = None,
+                started_with: Optional[Dict[str, str]] = None) -> Dict[str, str]:
     """The environment of a student process: the student's own overlay environment (or, for
-    the reference, the check's), the run's variables, what the check set on purpose in `env`,
-    and its own HOME/ROS_HOME/ROS_LOG_DIR; never the trusted side's variables."""
+    the reference, the check's), the run's variables, what the check set on purpose (in `env`,
+    or in its own environment since it started: `started_with`, by default the environment
+    this process had when the sandbox module was loaded), and its own HOME/ROS_HOME/ROS_LOG_DIR;
+    never the trusted side's variables."""
     given = dict(os.environ if env is None else env)
+    started_with = _STARTING_ENV if started_with is None else started_with
     base = dict(policy.student_env) if policy.student_env is not None else dict(given)
     for key in RUN_VARS:
         if key in given:
             base[key] = given[key]
         else:
             base.pop(key, None)
-    for key, value in given.items():  # what the check changed on purpose for this process
-        if os.environ.get(key) != value and key not in ("ROS_HOME", "ROS_LOG_DIR", "HOME"):
+    for key, value in given.items():  # e.g. TURTLEBOT3_MODEL, which the text has students export
+        if started_with.get(key) != value and key not in ("ROS_HOME", "ROS_LOG_DIR", "HOME"):
             base[key] = value
     for key in TRUSTED_VARS + ("DISPLAY",):
         base.pop(key, None)

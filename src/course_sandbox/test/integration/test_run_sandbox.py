@@ -5,7 +5,6 @@ import pwd
 import shutil
 import signal
 import subprocess
-import sys
 import tempfile
 from pathlib import Path
 
@@ -83,7 +82,7 @@ def test_ctrl_c_reaches_the_node_and_its_exit_code_comes_back(sandbox, place):
                       "def bye(*_):\n    print('bye', flush=True)\n    sys.exit(3)\n"
                       "signal.signal(signal.SIGINT, bye)\nprint('ready', flush=True)\n"
                       "while True:\n    time.sleep(0.05)\n")
-    argv, env, cwd = sandbox.prepare([sys.executable if os.path.exists(sys.executable) else "python3", str(script)])
+    argv, env, cwd = sandbox.prepare(["/usr/bin/python3", str(script)])
     proc = subprocess.Popen(argv, env=env, cwd=cwd, stdout=subprocess.PIPE, start_new_session=True)
     assert proc.stdout.readline() == b"ready\n"
     os.killpg(proc.pid, signal.SIGINT)

@@ -93,10 +93,11 @@ def test_a_student_process_never_gets_the_trusted_variables():
     policy = Policy(levels.FULL, home="/w/run/student", student_env={"PATH": "/overlay/bin", "ROS_HOME": "/x"})
     given_env = dict(os.environ, ROS_MASTER_URI="http://localhost:1234", COURSE_ARTIFACTS_DIR="/out/alice",
                      COURSE_SANDBOX_POLICY="/out/p.json", ROS_HOME="/out/trusted", DISPLAY=":0")
-    env = student_env(policy, given_env)
+    env = student_env(policy, dict(given_env, TURTLEBOT3_MODEL="burger"), started_with=given_env)
     assert env["PATH"] == "/overlay/bin" and env["ROS_MASTER_URI"] == "http://localhost:1234"
     assert env["HOME"] == env["ROS_HOME"] == "/w/run/student" and env["ROS_LOG_DIR"] == "/w/run/student/log"
     assert not {"COURSE_ARTIFACTS_DIR", "COURSE_SANDBOX_POLICY", "DISPLAY"} & set(env)
+    assert env["TURTLEBOT3_MODEL"] == "burger", "what the check sets on purpose reaches the student's process"
 
 
 def test_limits_are_noted_and_the_run_ended_past_memory_or_processes():

@@ -5,7 +5,8 @@ whatever it starts, even through setsid() or a double fork. After the run, every
 /proc/<pid>/environ holds the token is stopped and killed, whatever it did to its session,
 process group or signal handlers. Files the run writes are capped (RLIMIT_FSIZE), so a node
 printing without end is killed by SIGXFSZ instead of filling the disk. Where the machine allows
-it (root, `unshare`), the run also gets its own network namespace with only a loopback device.
+it (`unshare`: as root, or through a user namespace), the run also gets its own network
+namespace with only a loopback device.
 """
 from __future__ import annotations
 
@@ -106,8 +107,14 @@ def network_namespace_works() -> bool:
 
 
 def netns_prefix() -> List[str]:
-    """A command prefix that runs the rest in a new network namespace with loopback up."""
-    return ["unshare", "--net", "--", "sh", "-c", 'ip link set lo up && exec "$@"', "netns"]
+    """A command prefix that runs the rest in a new network namespace with loopback up. As root:
+    `unshare --net`. As an ordinary user: inside a user namespace that maps only the user
+    (`--map-current-user`), whose capabilities bring loopback up and are then all dropped, so
+    the run keeps the user's identity and rights."""
+    if os.geteuid() == 0:
+        return ["unshare", "--net", "--", "sh", "-c", 'ip link set lo up && exec "$@"', "netns"]
+    return ["unshare", "--user", "--map-current-user", "--net", "--keep-caps", "--", "sh", "-c",
+            'ip link set lo up && exec setpriv --inh-caps=-all --ambient-caps=-all -- "$@"', "netns"]
 
 
 def isolated_command(command: Sequence[str], own_network: bool) -> List[str]:

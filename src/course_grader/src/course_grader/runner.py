@@ -126,6 +126,15 @@ class Grader:
     def _work_dir(self, student: str, *parts: str) -> str:
         return os.path.join(self.options.out, WORK_DIR, student, *parts)
 
+    def _private_folders(self, student: str) -> None:
+        """Where the sandbox hides nothing (isolation `user only`: one user for every student),
+        file modes keep other students' code out: a student's outputs and unpacked files are the
+        grader's alone; its work folder lets the sandbox user through to the workspace and run
+        homes, without listing it."""
+        for folder, mode in ((self._student_dir(student), 0o700), (self._work_dir(student), 0o711)):
+            os.makedirs(folder, exist_ok=True)
+            os.chmod(folder, mode)
+
     def _only_for(self, files: Optional[str]) -> Optional[List[str]]:
         if self.options.only:
             return list(self.options.only)
@@ -147,11 +156,13 @@ class Grader:
                 for m in longest_first(selected, self._durations):
                     self._submit(self._run, sub, m, workspace.trusted_base_env(), [], None, None)
                 return
+            self._private_folders(sub.name)
             files = self._work_dir(sub.name, "files")
             try:
                 submissions.unpack(sub, files)
                 if not submissions.find_packages(files):
                     submissions.unpack_nested(files)
+                os.chmod(files, 0o700)
             except (submissions.UnsafeArchive, OSError, ValueError, EOFError, zipfile.BadZipFile,
                     tarfile.TarError) as err:
                 selected = verdict.select(self.milestones, [], self._only_for(None), False)

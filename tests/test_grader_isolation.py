@@ -3,9 +3,10 @@
 and as root where namespaces are refused (a Gradescope container; asked for here with
 COURSE_SANDBOX_LEVEL=user). Root with full isolation is what tests/test_grader_samples.py runs.
 
-Each grades the same three samples: a correct solution that leaves a signal-deaf helper behind
-(it must pass and the helper must not survive), a node that fakes /turtle1/pose (it must fail
-with the guard's sentence) and a correct solution."""
+Each grades the same samples: a correct solution that leaves a signal-deaf helper behind (it
+must pass and the helper must not survive), a node that fakes /turtle1/pose (it must fail with
+the guard's sentence), a correct solution, and a buggy one whose helper (new session, empty
+environment) tries to forge its results.json (it must fail, and the helper must not survive)."""
 from __future__ import annotations
 
 import json
@@ -21,7 +22,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 SAMPLES = {"bad_fork": ("chatter", True), "attack_fake_pose": ("pose_subscriber", False),
-           "lab2_chatter_scripts": ("chatter", True)}
+           "lab2_chatter_scripts": ("chatter", True), "attack_forge_results": ("chatter", False)}
 ORDINARY_USER = "nobody"
 TIMEOUT_S = 600
 

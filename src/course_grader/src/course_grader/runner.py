@@ -113,6 +113,7 @@ class Grader:
             while self._pending:
                 self._idle.wait()
         self._pool.shutdown()
+        self.sandbox.end_leftovers()
         self._durations.update({v.milestone.name: round(v.elapsed, 1) for v in self.verdicts if v.elapsed})
         os.makedirs(os.path.dirname(self._durations_path), exist_ok=True)
         with open(self._durations_path, "w") as f:

@@ -16,6 +16,7 @@ from typing import Dict, Optional, Sequence
 from course_sandbox import access, levels
 from course_testkit import isolation
 from course_sandbox.policy import DEFAULT_USER, Policy, normalised
+from course_sandbox.run import end_user_processes
 
 SANDBOX_USER_VAR = "COURSE_SANDBOX_USER"
 
@@ -57,6 +58,12 @@ class SandboxPlan:
         network = ("each run has its own loopback-only network" if isolation.network_namespace_works()
                    else "the runs share the machine's network (network namespaces refused)")
         return "%s; %s" % (levels.describe(self.level, self.user), network)
+
+    def end_leftovers(self) -> None:
+        """Once every run is over: without PID namespaces (`user only`) a student's helper that
+        left its session and emptied its environment is found by its user alone."""
+        if self.level == levels.USER:
+            end_user_processes(self.user)
 
     def give(self, path: str) -> str:
         """Make `path` (a folder tree the trusted side created) the student's: owned by the sandbox

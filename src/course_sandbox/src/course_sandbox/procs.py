@@ -39,6 +39,18 @@ def descendants(root: int) -> List[int]:
     return found
 
 
+def owner(pid: int) -> Optional[int]:
+    """The real uid of the process, or None when it is gone."""
+    try:
+        with open("/proc/%d/status" % pid) as f:
+            for line in f:
+                if line.startswith("Uid:"):
+                    return int(line.split()[1])
+    except (OSError, ValueError, IndexError):
+        pass
+    return None
+
+
 def command_name(pid: int) -> Optional[str]:
     """The process's command name (/proc/<pid>/comm), or None when it is gone."""
     try:

@@ -15,7 +15,7 @@ from typing import Dict, Optional, Sequence
 
 from course_sandbox import access, levels
 from course_testkit import isolation
-from course_sandbox.policy import DEFAULT_USER, Policy, normalised
+from course_sandbox.policy import DEFAULT_USER, Policy, grading_gid, normalised
 from course_sandbox.run import end_user_processes
 
 SANDBOX_USER_VAR = "COURSE_SANDBOX_USER"
@@ -28,6 +28,8 @@ class SandboxPlan:
                  user: Optional[str] = None) -> None:
         self.user = user or os.environ.get(SANDBOX_USER_VAR, DEFAULT_USER)
         self.level = levels.detect(self.user)
+        # Without PID namespaces, this grading's processes are told apart by their real group.
+        self.gid = grading_gid(os.getpid()) if self.level == levels.USER else -1
         self.out = os.path.realpath(out)
         self.course_root = os.path.realpath(course_root)
         home = os.path.expanduser("~")
@@ -63,7 +65,7 @@ class SandboxPlan:
         """Once every run is over: without PID namespaces (`user only`) a student's helper that
         left its session and emptied its environment is found by its user alone."""
         if self.level == levels.USER:
-            end_user_processes(self.user)
+            end_user_processes(self.user, self.gid)
 
     def give(self, path: str) -> str:
         """Make `path` (a folder tree the trusted side created) the student's: owned by the sandbox
@@ -79,7 +81,7 @@ class SandboxPlan:
     def policy(self, writable: Sequence[str], home: str, student_env: Optional[Dict[str, str]] = None,
                report: str = "") -> Policy:
         return Policy(self.level, self.user, normalised(writable), list(self.hidden), [self.course_root],
-                      home, student_env, report=report)
+                      home, student_env, report=report, gid=self.gid)
 
 
 def parse_env(data: bytes) -> Dict[str, str]:

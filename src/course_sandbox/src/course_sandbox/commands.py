@@ -48,7 +48,8 @@ def user_prefix(policy: Policy) -> List[str]:
     """Become the sandbox user (only when the level switches users, i.e. the grader is root)."""
     if not levels.switches_user(policy.level):
         return []
-    prefix = ["setpriv", "--reuid", policy.user, "--regid", policy.user, "--clear-groups"]
+    group = str(policy.gid) if policy.gid >= 0 else policy.user
+    prefix = ["setpriv", "--reuid", policy.user, "--regid", group, "--clear-groups"]
     if not levels.uses_namespaces(policy.level):
         prefix.append("--no-new-privs")  # bubblewrap sets it itself
     return prefix + ["--"]

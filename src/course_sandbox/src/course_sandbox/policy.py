@@ -6,12 +6,16 @@ back to the student's own processes.
 """
 from __future__ import annotations
 
+import grp
 import json
 import os
 from typing import Dict, List, NamedTuple, Optional, Sequence
 
 ENV_VAR = "COURSE_SANDBOX_POLICY"
 DEFAULT_USER = "coursesandbox"
+# grading_gid: above every group a system hands out, below the overflow and "no group" ids.
+GRADING_GID_BASE = 0x70000000
+PID_SPAN = 1 << 22  # Linux's largest pid_max
 MiB = 1024 * 1024
 GiB = 1024 * MiB
 
@@ -49,6 +53,9 @@ class Policy(NamedTuple):
         sandbox); None: the check's environment (the reference solutions).
     limits: see Limits.
     report: where the trusted side writes what the sandbox saw (limits hit), or "".
+    gid: the real group student code runs with when the user is switched; -1: the user's own.
+        Without PID namespaces (isolation `user only`) a grading gives its processes a group of
+        their own (grading_gid), so its final sweep ends its processes alone, not another grading's.
     """
 
     level: str
@@ -60,6 +67,7 @@ class Policy(NamedTuple):
     student_env: Optional[Dict[str, str]] = None
     limits: Limits = Limits()
     report: str = ""
+    gid: int = -1
 
     def to_json(self) -> str:
         data = self._asdict()
@@ -88,6 +96,18 @@ def from_environment(environ: Optional[Dict[str, str]] = None) -> Optional[Polic
         return None
     with open(path) as f:
         return Policy.from_json(f.read())
+
+
+def grading_gid(pid: int) -> int:
+    """The real group of one grading's student processes (the grader's pid makes it unique among
+    the gradings running at once): a number no group of the system has."""
+    gid = GRADING_GID_BASE + pid
+    while True:
+        try:
+            grp.getgrgid(gid)
+        except KeyError:
+            return gid
+        gid += PID_SPAN
 
 
 def normalised(paths: Sequence[str]) -> List[str]:

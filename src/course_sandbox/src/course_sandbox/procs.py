@@ -41,10 +41,19 @@ def descendants(root: int) -> List[int]:
 
 def owner(pid: int) -> Optional[int]:
     """The real uid of the process, or None when it is gone."""
+    return _real_id(pid, "Uid:")
+
+
+def real_group(pid: int) -> Optional[int]:
+    """The real gid of the process (an unprivileged process cannot change it), or None when it is gone."""
+    return _real_id(pid, "Gid:")
+
+
+def _real_id(pid: int, field: str) -> Optional[int]:
     try:
         with open("/proc/%d/status" % pid) as f:
             for line in f:
-                if line.startswith("Uid:"):
+                if line.startswith(field):
                     return int(line.split()[1])
     except (OSError, ValueError, IndexError):
         pass
@@ -113,3 +122,12 @@ def proportional_bytes(pid: int) -> Optional[int]:
     except (OSError, ValueError, IndexError):
         pass
     return None
+
+
+def signal_all(pids: Iterable[int], sig: int) -> None:
+    """Send `sig` to each of `pids`, skipping those gone or not ours."""
+    for pid in pids:
+        try:
+            os.kill(pid, sig)
+        except (ProcessLookupError, PermissionError):
+            pass

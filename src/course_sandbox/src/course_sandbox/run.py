@@ -19,7 +19,7 @@ import signal
 import subprocess
 import threading
 import time
-from typing import Callable, Dict, List, Optional, Sequence, Tuple
+from typing import Callable, Dict, List, Optional, Sequence, Set, Tuple
 
 from course_sandbox import commands, levels, procs
 from course_sandbox.access import identity, traverser
@@ -117,8 +117,7 @@ def judge_usage(policy: Policy, usages: Sequence[procs.Usage], hits: LimitHits,
 
 
 class RunSandbox:
-    """The sandbox of one milestone run (see the module docstring). Create it in a thread that
-    lives as long as the run (the main thread): the keeper dies with the thread that started it."""
+    """The sandbox of one milestone run (see the module docstring); any thread may use it."""
 
     def __init__(self, policy: Policy) -> None:
         self.policy = policy
@@ -129,6 +128,7 @@ class RunSandbox:
         self._namespace: Optional[str] = None
         self._entered: List[subprocess.Popen] = []
         self._closed = threading.Event()
+        self._released = threading.Event()  # the keeper is gone: its holding thread may end
         self._watcher: Optional[threading.Thread] = None
 
     @property
@@ -136,11 +136,29 @@ class RunSandbox:
         return self.policy.level
 
     def _start_keeper(self) -> None:
-        """Start the keeper and wait for its namespace init (bubblewrap's child, pid 1 inside)."""
+        """Start the keeper and wait for its namespace init (bubblewrap's child, pid 1 inside).
+
+        bubblewrap's --die-with-parent fires when the *thread* that started it ends, so the keeper
+        is started by a thread of its own that lives until close(), whichever thread asks first."""
         argv = commands.keeper_command(self.policy, traverser(*identity(self.policy.level, self.policy.user)))
-        self._keeper = subprocess.Popen(argv, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
-                                        stderr=subprocess.PIPE, start_new_session=True)
-        self._wait_for_init()
+        started = threading.Event()
+        failure: List[BaseException] = []
+
+        def hold() -> None:
+            try:
+                self._keeper = subprocess.Popen(argv, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                                                stderr=subprocess.PIPE, start_new_session=True)
+                self._wait_for_init()
+            except BaseException as error:  # handed to the caller
+                failure.append(error)
+                return
+            finally:
+                started.set()
+            self._released.wait()
+        threading.Thread(target=hold, name="sandbox-keeper", daemon=True).start()
+        started.wait()
+        if failure:
+            raise failure[0]
 
     def _wait_for_init(self) -> None:
         """Wait until bubblewrap's child, pid 1 inside, has set the view up and become the
@@ -208,27 +226,34 @@ class RunSandbox:
 
     def _watch(self) -> None:
         while not self._closed.wait(WATCH_INTERVAL_S):
-            pids = self.processes()
-            usages = [u for u in (procs.usage(pid) for pid in pids) if u is not None]
-            if usages and judge_usage(self.policy, usages, self.hits,
-                                      lambda: sum(procs.proportional_bytes(pid) or 0 for pid in pids)):
+            if self._sample():
                 self.end_processes()
                 self.write_report()
+
+    def _sample(self) -> bool:
+        """One look at the sandbox's processes (see judge_usage): True when they must end."""
+        pids = self.processes()
+        usages = [u for u in (procs.usage(pid) for pid in pids) if u is not None]
+        return bool(usages) and judge_usage(self.policy, usages, self.hits,
+                                            lambda: sum(procs.proportional_bytes(pid) or 0 for pid in pids))
 
     def end_processes(self, rounds: int = 20) -> None:
         """Kill every process in the sandbox now (the keeper stays: later starts still work).
         Each round freezes them all before killing any, so a fork bomb cannot refill the slots
-        the kills free."""
+        the kills free.
+
+        nsenter, outside the namespace, stops itself when it sees its child stopped (to pass a
+        job-control stop on) and would stay stopped once that child is killed: the nsenters of the
+        killed processes are continued at the end, so they report the kill (-9) and exit."""
+        entered: Set[int] = set()
         for _ in range(rounds):
             pids = self.processes()
             if not pids:
-                return
+                break
+            entered |= {p for p in (procs.parent(pid) for pid in pids) if p and p not in pids and p != self._init_pid}
             for sig in (signal.SIGSTOP, signal.SIGKILL):
-                for pid in pids:
-                    try:
-                        os.kill(pid, sig)
-                    except (ProcessLookupError, PermissionError):
-                        pass
+                procs.signal_all(pids, sig)
+        procs.signal_all(entered, signal.SIGCONT)
 
     def _kill_keeper(self) -> None:
         if self._keeper is None:
@@ -264,11 +289,15 @@ class RunSandbox:
         if self._closed.is_set():
             return
         self._closed.set()
+        if self._watcher is not None:
+            self._watcher.join(5)
+        # A last look before the end: a run can fail within a watch interval of hitting a limit
+        # (a fork bomb that keeps the node from starting a thread), and the verdict must say so.
+        self._sample()
         with self._lock:
             if levels.uses_namespaces(self.level):
                 self._kill_keeper()
-        if self._watcher is not None:
-            self._watcher.join(5)
+            self._released.set()
         self.write_report()
 
     def __enter__(self) -> "RunSandbox":
@@ -346,22 +375,20 @@ def _start_oneshot(policy: Policy, command: Sequence[str], cwd: str, env: Dict[s
     return subprocess.Popen(argv, cwd=cwd, env=env, stdin=subprocess.DEVNULL, start_new_session=True, **streams)
 
 
-def end_user_processes(user: str, rounds: int = 20) -> int:
-    """Kill every process of `user` (the sandbox user), frozen first each round; how many. Where
-    no PID namespace holds a run's processes (isolation `user only`), a helper that left its
-    session and emptied its environment escapes the run's own sweep: the grader calls this once
-    every run is over (the sandbox user runs nothing but graded code)."""
+def end_user_processes(user: str, gid: int, rounds: int = 20) -> int:
+    """Kill every process of `user` (the sandbox user) whose real group is `gid` (one grading's:
+    policy.grading_gid), frozen first each round; how many. Where no PID namespace holds a run's
+    processes (isolation `user only`), a helper that left its session and emptied its environment
+    escapes the run's own sweep: the grader calls this once every run is over. The group keeps
+    the sweep to this grading: another grading on the machine runs as the same user."""
     uid = pwd.getpwnam(user).pw_uid
     killed = set()
     for _ in range(rounds):
-        pids = [pid for pid in procs.pids() if procs.owner(pid) == uid and pid != os.getpid()]
+        pids = [pid for pid in procs.pids()
+                if procs.owner(pid) == uid and procs.real_group(pid) == gid and pid != os.getpid()]
         if not pids:
             break
         for sig in (signal.SIGSTOP, signal.SIGKILL):
-            for pid in pids:
-                try:
-                    os.kill(pid, sig)
-                except (ProcessLookupError, PermissionError):
-                    pass
+            procs.signal_all(pids, sig)
         killed.update(pids)
     return len(killed)

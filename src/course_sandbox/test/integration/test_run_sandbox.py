@@ -6,13 +6,15 @@ import shutil
 import signal
 import subprocess
 import tempfile
+import threading
 from pathlib import Path
 
 import pytest
 
-from course_sandbox import levels
+from course_sandbox import levels, run
 from course_sandbox.policy import DEFAULT_USER, Limits, Policy
 from course_sandbox.run import RunSandbox, capture_oneshot
+from course_testkit.waiting import wait_for
 
 ROOT = os.geteuid() == 0
 LEVEL = levels.detect(DEFAULT_USER)
@@ -122,6 +124,54 @@ def test_a_fork_bomb_is_contained_noted_and_ended(place):
         assert "processes" in box.hits.hits
         assert code is not None and code < 0, "the watcher ends a run at its process limit"
     assert "process limit" in report.read_text()
+
+
+def test_a_limit_reached_just_before_the_end_is_still_noted(place, monkeypatch):
+    """A run can end within a watch interval of its code reaching a limit (a fork bomb keeps the
+    node from starting, the check fails at once): closing takes a last look."""
+    monkeypatch.setattr(run, "WATCH_INTERVAL_S", 3600.0)  # the watcher never gets to look
+    out, home, course = place
+    report = out / "sandbox.json"
+    box = RunSandbox(Policy(LEVEL, DEFAULT_USER, [str(home)], [str(out)], [str(course)], str(home),
+                            limits=Limits(processes=32), report=str(report)))
+    argv, env, cwd = box.prepare(["python3", "-c", "import os, time\nfor _ in range(64):\n    try:\n"
+                                  "        if os.fork() == 0:\n            time.sleep(60)\n            os._exit(0)\n"
+                                  "    except OSError:\n        break\ntime.sleep(60)\n"])
+    proc = subprocess.Popen(argv, env=env, cwd=cwd, start_new_session=True)
+    try:
+        assert wait_for(lambda: len(box.processes()) >= 30, 20), "the forks fill the sandbox"
+    finally:
+        box.close()
+    assert proc.wait(10) is not None
+    assert "process limit" in report.read_text()
+
+
+def test_ending_a_stopped_process_ends_its_nsenter_too(sandbox):
+    """nsenter stops itself when its child stops (job control) and would stay stopped after the
+    watcher kills the child: the run's command must still report the kill."""
+    argv, env, cwd = sandbox.prepare(["sh", "-c", "kill -STOP $$; echo never"])
+    proc = subprocess.Popen(argv, env=env, cwd=cwd, stdout=subprocess.PIPE, start_new_session=True)
+
+    def state():
+        try:
+            return open("/proc/%d/stat" % proc.pid).read().rsplit(")", 1)[1].split()[0]
+        except OSError:
+            return None
+    assert wait_for(lambda: state() == "T", 10), "nsenter passes its child's stop on to itself"
+    sandbox.end_processes()
+    assert proc.wait(10) == -signal.SIGKILL
+    assert proc.stdout.read() == b""
+    proc.stdout.close()
+
+
+def test_the_keeper_outlives_the_thread_that_started_it(sandbox):
+    """bubblewrap dies with the thread that started it (--die-with-parent): a first student
+    process started from a short-lived thread must not take the run's sandbox with it."""
+    worker = threading.Thread(target=lambda: shell(sandbox, "true"))
+    worker.start()
+    worker.join()
+    code, text = shell(sandbox, "echo alive")
+    assert (code, text) == (0, "alive\n")
 
 
 def test_a_build_sandbox_writes_only_its_workspace(place):

@@ -17,11 +17,11 @@ import signal
 import socket
 import subprocess
 import uuid
-from typing import Dict, Iterable, List, Optional, Sequence, Set
+from typing import Dict, List, Optional, Sequence, Set
 
 from course_sandbox import procs
 from course_sandbox.policy import Limits
-from course_sandbox.procs import descendants
+from course_sandbox.procs import descendants, signal_all
 
 TOKEN_VAR = "COURSE_RUN_TOKEN"
 # Largest file any process of a run may write: student logs, canvas pictures, JUnit XML (the
@@ -62,14 +62,6 @@ def pids_with_token(token: str) -> List[int]:
     return found
 
 
-def _signal_all(pids: Iterable[int], sig: int) -> None:
-    for pid in pids:
-        try:
-            os.kill(pid, sig)
-        except (ProcessLookupError, PermissionError):
-            pass
-
-
 def kill_run(token: str, root: Optional[int] = None, rounds: int = 20) -> Set[int]:
     """Kill every process of the run: the token holders and the tree below `root` (which catches
     a process that emptied its environment). Each round freezes them all (SIGSTOP, so a forking
@@ -82,8 +74,8 @@ def kill_run(token: str, root: Optional[int] = None, rounds: int = 20) -> Set[in
         pids -= {os.getpid()}
         if not pids:
             break
-        _signal_all(pids, signal.SIGSTOP)
-        _signal_all(pids, signal.SIGKILL)
+        signal_all(pids, signal.SIGSTOP)
+        signal_all(pids, signal.SIGKILL)
         killed |= pids
     return killed
 

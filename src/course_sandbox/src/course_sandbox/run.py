@@ -296,6 +296,9 @@ class RunSandbox:
         self._sample()
         with self._lock:
             if levels.uses_namespaces(self.level):
+                # The processes first, so a stopped nsenter is continued and reaps its child: the
+                # namespace's init, killed next, cannot finish dying while a member is unreaped.
+                self.end_processes()
                 self._kill_keeper()
             self._released.set()
         self.write_report()

@@ -146,11 +146,11 @@ def test_a_limit_reached_just_before_the_end_is_still_noted(place, monkeypatch):
     assert "process limit" in report.read_text()
 
 
-def test_ending_a_stopped_process_ends_its_nsenter_too(sandbox):
-    """nsenter stops itself when its child stops (job control) and would stay stopped after the
-    watcher kills the child: the run's command must still report the kill."""
-    argv, env, cwd = sandbox.prepare(["sh", "-c", "kill -STOP $$; echo never"])
-    proc = subprocess.Popen(argv, env=env, cwd=cwd, stdout=subprocess.PIPE, start_new_session=True)
+def _stopped_student(box):
+    """A student process that stops itself; nsenter, outside, stops too (it passes job-control
+    stops on) and would stay stopped once its child is killed."""
+    argv, env, cwd = box.prepare(["sh", "-c", "kill -STOP $$; echo never"])
+    proc = subprocess.Popen(argv, env=env, cwd=cwd, stdout=subprocess.DEVNULL, start_new_session=True)
 
     def state():
         try:
@@ -158,10 +158,21 @@ def test_ending_a_stopped_process_ends_its_nsenter_too(sandbox):
         except OSError:
             return None
     assert wait_for(lambda: state() == "T", 10), "nsenter passes its child's stop on to itself"
+    return proc
+
+
+def test_ending_a_stopped_process_ends_its_nsenter_too(sandbox):
+    proc = _stopped_student(sandbox)
     sandbox.end_processes()
+    assert proc.wait(10) == -signal.SIGKILL, "the run's command reports the kill"
+
+
+def test_closing_a_run_with_a_stopped_process_leaves_nothing(sandbox):
+    proc = _stopped_student(sandbox)
+    left = sandbox.processes()
+    sandbox.close()
     assert proc.wait(10) == -signal.SIGKILL
-    assert proc.stdout.read() == b""
-    proc.stdout.close()
+    assert wait_for(lambda: not any(os.path.exists("/proc/%d" % pid) for pid in left), 10)
 
 
 def test_the_keeper_outlives_the_thread_that_started_it(sandbox):

@@ -6,8 +6,10 @@ import subprocess
 
 import pytest
 
+from course_sandbox import procs
 from course_sandbox.policy import DEFAULT_USER, grading_gid
 from course_sandbox.run import end_user_processes
+from course_testkit.waiting import wait_for
 
 pytestmark = pytest.mark.skipif(os.geteuid() != 0, reason="switching to the sandbox user needs root")
 
@@ -29,7 +31,11 @@ def test_the_sweep_ends_one_gradings_processes_only():
         return subprocess.Popen(["setpriv", "--reuid", DEFAULT_USER, "--regid", str(gid), "--clear-groups",
                                  "--", "env", "-i", "setsid", "sleep", "60"])
     ours, other = leftover(mine), leftover(theirs)
+    uid = pwd.getpwnam(DEFAULT_USER).pw_uid
     try:
+        for proc, gid in ((ours, mine), (other, theirs)):
+            assert wait_for(lambda: (procs.owner(proc.pid), procs.real_group(proc.pid)) == (uid, gid), 10), \
+                "setpriv switched to the sandbox user and the grading's group"
         assert end_user_processes(DEFAULT_USER, mine) >= 1
         assert ours.wait(10) == -9
         assert other.poll() is None, "another grading's process must survive this grading's sweep"

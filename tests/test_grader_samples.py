@@ -150,3 +150,9 @@ def test_every_verdict_says_which_isolation_was_in_force(graded: Path) -> None:
         results = json.loads((graded / sample.name / "results.json").read_text())
         assert "isolation: " in results["output"], sample.name
     assert "Isolation of student code: " in (graded / "report.html").read_text()
+
+
+def test_the_student_ros_logs_are_copied_out(graded: Path) -> None:
+    """The trusted side copies each run's ROS logs (the student's node logs) into the outputs."""
+    copied = sorted(p.name for p in (graded / "attack_write_outputs" / "chatter" / "ros_log").rglob("*.log"))
+    assert any(name.startswith("talker") for name in copied), copied

@@ -26,6 +26,7 @@ from course_sandbox.policy import ENV_VAR as POLICY_VAR
 from course_grader import gradescope, submissions, verdict, workspace
 from course_grader.sandboxing import SandboxPlan
 from course_grader.submissions import Submission
+from course_grader.student_logs import copy_logs
 from course_grader.verdict import Verdict
 
 MILESTONE_PACKAGE = "course_milestones"
@@ -234,8 +235,9 @@ class Grader:
             if not result.passed:
                 hints = hints + verdict.output_capped(artifacts)
                 reason = "\n".join([reason] + [h for h in hints if h not in reason])
+            copy_logs(os.path.join(home, "log"), os.path.join(artifacts, "ros_log"))
             verdict.trim_files(artifacts)
-            verdict.trim_files(run_dir)
+            verdict.trim_files(run_dir, skip=home)  # the student's home is theirs: never written by us
             self._record(Verdict(sub.name, m, result.passed, reason, verdict.log_tails(artifacts),
                                  result.elapsed, artifacts, verdict.sandbox_notes(report)))
         except Exception:  # noqa: BLE001

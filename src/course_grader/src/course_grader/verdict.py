@@ -129,9 +129,11 @@ def output_capped(folder: str) -> List[str]:
             for p in sorted(glob.glob(os.path.join(folder, "*.log"))) if os.path.getsize(p) >= MAX_FILE_BYTES]
 
 
-def trim_files(folder: str, keep: int = KEEP_BYTES) -> None:
-    """Keep only the last `keep` bytes of every file bigger than that under `folder`."""
-    for root, _, files in os.walk(folder):
+def trim_files(folder: str, keep: int = KEEP_BYTES, skip: str = "") -> None:
+    """Keep only the last `keep` bytes of every file bigger than that under `folder`, except
+    below `skip`."""
+    for root, dirs, files in os.walk(folder):
+        dirs[:] = [d for d in dirs if not skip or os.path.join(root, d) != skip]
         for name in files:
             path = os.path.join(root, name)
             try:  # never through a link: the student's run folder is under `folder`

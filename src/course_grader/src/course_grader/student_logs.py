@@ -1,0 +1,57 @@
+"""Copying a run's own logs (ROS's logs in the student's run home) into the grader's outputs.
+
+The folder is the student's: its code may have left links to the grader's files, pipes, deep
+trees or huge files there, and where no PID namespace ends every student process with the run
+(isolation `user only`) a leftover may still change it while it is copied. So the trusted side
+walks it by directory descriptor without following a link, copies regular files alone, each
+opened without following a link, and keeps at most MAX_FILES files and the last MAX_FILE_BYTES
+of each. A copy is only ever shown as a log: no verdict is read from it.
+"""
+from __future__ import annotations
+
+import os
+import stat
+from typing import List
+
+MAX_FILES = 200
+MAX_FILE_BYTES = 256 * 1024
+
+
+def copy_logs(source: str, target: str, max_files: int = MAX_FILES, max_bytes: int = MAX_FILE_BYTES) -> List[str]:
+    """Copy the regular files under `source` (the student's) to the same places under `target`
+    (the grader's, created here), each cut to its last `max_bytes`; the relative paths copied."""
+    copied: List[str] = []
+    if not os.path.isdir(source) or os.path.islink(source):
+        return copied
+    for folder, _, files, folder_fd in os.fwalk(source, follow_symlinks=False):
+        relative = os.path.relpath(folder, source)
+        for name in sorted(files):
+            if len(copied) >= max_files:
+                return copied
+            data = _tail(name, folder_fd, max_bytes)
+            if data is None:
+                continue
+            path = os.path.normpath(os.path.join(relative, name))
+            destination = os.path.join(target, path)
+            os.makedirs(os.path.dirname(destination), exist_ok=True)
+            with open(destination, "wb") as out:
+                out.write(data)
+            copied.append(path)
+    return copied
+
+
+def _tail(name: str, folder_fd: int, max_bytes: int):
+    """The last `max_bytes` of the regular file `name` in the folder open as `folder_fd`, with a
+    line saying what was left out; None for anything else (a link, a pipe, a device, gone)."""
+    try:
+        fd = os.open(name, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK, dir_fd=folder_fd)
+    except OSError:
+        return None
+    with os.fdopen(fd, "rb") as f:
+        info = os.fstat(f.fileno())
+        if not stat.S_ISREG(info.st_mode):
+            return None
+        if info.st_size <= max_bytes:
+            return f.read(max_bytes)
+        f.seek(info.st_size - max_bytes)
+        return b"[... first %d bytes left out ...]\n" % (info.st_size - max_bytes) + f.read(max_bytes)

@@ -29,11 +29,16 @@ DESCRIPTIONS: Dict[str, str] = {
           "with the system and the course read-only and other students' files hidden",
     NAMESPACES: "namespaces: student code ran in its own PID, mount and user namespaces, with the "
                 "system and the course read-only and other students' files hidden (no user switch: "
-                "the grader is not root)",
-    USER: "user only: this machine refuses namespaces, so student code ran as the user {user} with "
-          "file permissions and limits alone (it could see other processes)",
-    NONE: "none: this machine refuses namespaces and the grader is not root, so student code ran "
-          "with the grader's rights and limits alone",
+                "{cause})",
+    USER: "user only: {cause}, so student code ran as the user {user} with file permissions and limits "
+          "alone (it could see other processes)",
+    NONE: "none: {cause}, so student code ran with the grader's rights and limits alone",
+}
+# Why a level is weaker than full, when the machine decided it.
+CAUSES: Dict[str, str] = {
+    NAMESPACES: "the grader is not root",
+    USER: "this machine refuses namespaces",
+    NONE: "this machine refuses namespaces and the grader is not root",
 }
 
 
@@ -45,8 +50,14 @@ def switches_user(level: str) -> bool:
     return level in (FULL, USER)
 
 
-def describe(level: str, user: str) -> str:
-    return DESCRIPTIONS.get(level, level).format(user=user)
+def describe(level: str, user: str, environ: Optional[Dict[str, str]] = None) -> str:
+    """The sentence every verdict carries: the level, what it means, and why it is weaker than
+    full (the machine, or $COURSE_SANDBOX_LEVEL asking for it)."""
+    environ = os.environ if environ is None else environ
+    cause = CAUSES.get(level, "")
+    if environ.get(LEVEL_VAR) == level:
+        cause = "%s=%s asked for it" % (LEVEL_VAR, level)
+    return DESCRIPTIONS.get(level, level).format(user=user, cause=cause)
 
 
 def weaker(a: str, b: str) -> str:

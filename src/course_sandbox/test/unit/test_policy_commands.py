@@ -129,3 +129,13 @@ def test_a_hidden_path_the_sandbox_user_cannot_reach_needs_no_mount(tmp_path):
 def test_the_first_folder_the_user_cannot_pass_is_named():
     assert access.unreachable_part("/a/b/c", lambda p: p != "/a/b") == "/a/b"
     assert access.unreachable_part("/a/b/c", lambda p: True) == ""
+
+
+def test_the_isolation_sentence_says_why_it_is_weaker():
+    from course_sandbox import levels
+    assert "this machine refuses namespaces" in levels.describe(levels.USER, "sandboxer", {})
+    forced = levels.describe(levels.NONE, "sandboxer", {levels.LEVEL_VAR: "none"})
+    assert forced.startswith("none: COURSE_SANDBOX_LEVEL=none asked for it, so")
+    assert "refuses" not in forced
+    assert "(no user switch: the grader is not root)" in levels.describe(levels.NAMESPACES, "s", {})
+    assert "{" not in levels.describe(levels.FULL, "sandboxer", {levels.LEVEL_VAR: "full"})

@@ -156,3 +156,25 @@ def test_the_student_ros_logs_are_copied_out(graded: Path) -> None:
     """The trusted side copies each run's ROS logs (the student's node logs) into the outputs."""
     copied = sorted(p.name for p in (graded / "attack_write_outputs" / "chatter" / "ros_log").rglob("*.log"))
     assert any(name.startswith("talker") for name in copied), copied
+
+
+UNITTEST_WORDS = re.compile(r"is not true|is not false| != |AssertionError|Traceback \(most recent call last\)")
+
+
+def test_no_reason_speaks_unittest(graded: Path) -> None:
+    """A student reads the check's sentence, never the assertion behind it: no failure reason
+    holds unittest's words or a traceback, unless it quotes the student's own (a line of their
+    node's or their build's log)."""
+    found = []
+    for sample in SAMPLES:
+        for name, test in _tests_of(graded, sample.name).items():
+            if test["status"] == "passed":
+                continue
+            reason = test["output"].split("\n\n--- last lines of", 1)[0]
+            logs = "".join(p.read_text(errors="replace") for p in (graded / sample.name / name).rglob("*.log"))
+            build_log = graded / "_work" / sample.name / "build.log"
+            logs += build_log.read_text(errors="replace") if build_log.is_file() else ""
+            for line in reason.splitlines():
+                if UNITTEST_WORDS.search(line) and line.strip() not in logs:
+                    found.append("%s/%s: %s" % (sample.name, name, line))
+    assert not found, "\n".join(found)

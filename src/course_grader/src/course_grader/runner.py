@@ -26,7 +26,7 @@ from course_sandbox.policy import ENV_VAR as POLICY_VAR
 from course_grader import gradescope, submissions, verdict, workspace
 from course_grader.sandboxing import SandboxPlan
 from course_grader.submissions import Submission
-from course_grader.student_logs import copy_logs
+from course_grader.student_files import copy_logs
 from course_grader.verdict import Verdict
 
 MILESTONE_PACKAGE = "course_milestones"

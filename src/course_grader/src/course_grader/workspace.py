@@ -9,23 +9,19 @@ from __future__ import annotations
 import glob
 import importlib.util
 import os
-import re
 import shlex
 import shutil
 from typing import Dict, Iterable, List, NamedTuple, Optional, Sequence, Set
 
 from course_sandbox.run import capture_oneshot, run_oneshot
 
+from course_grader import build_errors, build_order
 from course_grader.sandboxing import SandboxPlan, overlay_paths, parse_env
 from course_grader.submissions import Package
 
 BUILD_TIMEOUT_S = 600.0
 PYTHON = "/usr/bin/python3"
 SETUP_ENV = "COURSE_WS_SETUP"  # override: the setup.bash of the course workspace
-# Where a failed build says why: CMake errors, compiler errors, catkin's and Python's complaints.
-_ERROR_START = re.compile(r"CMake Error|\berror:|fatal error|^Error|Traceback \(most recent|Multiple packages|"
-                          r"^make(\[\d+\])?: \*\*\*")
-SUMMARY_LINES = 25
 
 
 class BuildResult(NamedTuple):
@@ -62,32 +58,6 @@ def course_site(setup_bash: str) -> str:
     """The Python modules folder of the course workspace whose setup.bash this is."""
     found = glob.glob(os.path.join(os.path.dirname(setup_bash), "lib", "python3*", "dist-packages"))
     return found[0] if found else ""
-
-
-def build_failure_summary(log: str, lines: int = SUMMARY_LINES) -> str:
-    """What a failed catkin_make log says is wrong: each error block (the error line and the
-    indented or blank lines after it, e.g. CMake's reason and call stack, a compiler's source
-    line, a Python traceback's last line), at most `lines` lines; else the log's last lines."""
-    all_lines = [line.rstrip() for line in log.splitlines()]
-    kept: List[str] = []
-    i = 0
-    while i < len(all_lines) and len(kept) < lines:
-        if not _ERROR_START.search(all_lines[i]):
-            i += 1
-            continue
-        block = [all_lines[i]]
-        i += 1
-        while i < len(all_lines) and (not all_lines[i] or all_lines[i][0].isspace()
-                                      or all_lines[i].startswith("Call Stack")):
-            block.append(all_lines[i])
-            i += 1
-        if block[0].startswith("Traceback") and i < len(all_lines):
-            block.append(all_lines[i])  # the exception itself
-            i += 1
-        kept += [line for line in block if line.strip()]
-    if not kept:
-        kept = [line for line in all_lines if line.strip()][-lines:]
-    return "\n".join(kept[:lines])
 
 
 def populate(ws: str, packages: Sequence[Package]) -> None:
@@ -136,7 +106,10 @@ def build(ws: str, setup_bash: str, plan: SandboxPlan, home: str, log_path: str,
     if code is None:
         return BuildResult(False, log_path, "catkin_make did not finish within %.0f s" % timeout, None)
     if code != 0:
-        return BuildResult(False, log_path, build_failure_summary(text), None)
+        return BuildResult(False, log_path, build_errors.summarise(text, ws), None)
+    unordered = build_order.unordered(ws)
+    if unordered:
+        return BuildResult(False, log_path, "\n".join(u.reason() for u in unordered), None)
     source = "source %s >/dev/null 2>&1; exec env -0" % shlex.quote(os.path.join(ws, "devel", "setup.bash"))
     code, out = capture_oneshot(policy, ["bash", "-c", source], ws, env)
     student_env = parse_env(out) if code == 0 else None

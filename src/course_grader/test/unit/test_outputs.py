@@ -5,7 +5,6 @@ from course_milestones.milestone import Milestone
 
 from course_grader import gradebook, gradescope, report
 from course_grader.verdict import Verdict
-from course_grader.workspace import build_failure_summary
 
 CHATTER = Milestone("chatter", "Example pub/sub", "002 section 2", "chatter.test", ("chatter",))
 CP1 = Milestone("checkpoint1", "TimestampString", "002 checkpoint 1", "checkpoint1.test", ("my_chatter",), 20.0)
@@ -42,33 +41,6 @@ def test_report_escapes_and_links_canvases(tmp_path):
     page = report.render(verdicts, ORDER, str(tmp_path))
     assert 'src="alice/chatter/canvas.png"' in page
     assert "&lt;b&gt;" in page and "<b>" not in page.split("<body>")[1]
-
-
-CMAKE_LOG = """-- Using CATKIN_DEVEL_PREFIX: /ws/devel
--- nosetests not found, Python tests can not be run
-CMake Error at /usr/share/catkin/cmake/catkinConfig.cmake:82 (find_package):
-  Could not find a package configuration file provided by "std_msg" with any
-  of the following names:
-
-    std_msgConfig.cmake
-Call Stack (most recent call first):
-  chatter/CMakeLists.txt:3 (find_package)
-
-
--- Configuring incomplete, errors occurred!
-Invoking "cmake" failed
-"""
-
-
-def test_build_failure_summary_keeps_the_cmake_error_block():
-    summary = build_failure_summary(CMAKE_LOG)
-    assert summary.splitlines()[0].startswith("CMake Error at")
-    assert "std_msgConfig.cmake" in summary and "chatter/CMakeLists.txt:3" in summary
-    assert "nosetests" not in summary
-
-
-def test_build_failure_summary_without_known_errors_is_the_end_of_the_log():
-    assert build_failure_summary("a\nb\nc\n", lines=2) == "b\nc"
 
 
 def test_shadowed_modules_protect_the_checks_but_not_the_reference(tmp_path):

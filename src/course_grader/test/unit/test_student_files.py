@@ -2,7 +2,7 @@
 link, each cut to its end, a bounded number."""
 import os
 
-from course_grader.student_logs import copy_logs
+from course_grader.student_files import copy_logs
 
 
 def test_logs_are_copied_with_their_folders(tmp_path):

@@ -27,11 +27,12 @@ import signal
 import subprocess
 import time
 import xmlrpc.client
-from typing import Callable, Dict, List, NamedTuple, Optional, Sequence, Tuple
+from typing import Callable, Dict, List, NamedTuple, Optional, Sequence, Tuple, Union
 
 from course_sandbox import policy as sandbox_policy
 from course_sandbox.run import RunSandbox
 
+from course_milestones import master_log
 from course_milestones.discovery import (CALLER, Registration, describe as describe_names, list_executables,
                                          new_registrations, node_uris, own_names, registrations_with_uris)
 from course_testkit.artifacts import artifact_path
@@ -177,7 +178,7 @@ def servers_first(paths: Sequence[str]) -> List[str]:
     return sorted(paths, key=key)
 
 
-def last_words(started: Script) -> str:
+def last_words(started: Union[Script, PtyKeyboard]) -> str:
     """The end of a process's output, for a failure message (with a hint when rospy stopped it
     because another node took its name)."""
     try:
@@ -214,12 +215,16 @@ def start_registering(pkg: str, args: Sequence[str], wanted: Callable[[Registrat
     that satisfies `wanted`; executables whose name matches `hint` go first. Returns it (still
     running) and, for the failure message, what each other executable did."""
     tried: List[str] = []
+    history = master_log.History()
     for path in hinted_first(list_executables(pkg), hint):
+        before = set(node_uris())
+        history.mark()
         keyboard, found, seen = start_and_wait([path] + list(args), wanted, log_name, timeout)
         if found is not None:
             return Registered(path, keyboard, found), tried
+        earlier = [r for node, r in master_log.ever_registered(history.since()).items() if node not in before]
+        tried.append(describe_attempt(os.path.basename(path), keyboard, seen, earlier, wanted))
         keyboard.stop()
-        tried.append(describe_attempt(os.path.basename(path), keyboard, seen))
     return None, tried
 
 
@@ -247,14 +252,40 @@ def start_and_wait(command: Sequence[str], wanted: Callable[[Registration], bool
         time.sleep(0.1)
 
 
-def describe_attempt(name: str, keyboard: PtyKeyboard, seen: Sequence[Registration]) -> str:
-    """What a started executable did instead of what was asked, for a failure message."""
+def describe_attempt(name: str, keyboard: PtyKeyboard, seen: Sequence[Registration],
+                     earlier: Sequence[Registration] = (), wanted: Optional[Callable[[Registration], bool]] = None,
+                     ) -> str:
+    """What a started executable did instead of what was asked, for a failure message: what it
+    registered, and, when the master's log shows it did register what was asked (`earlier`)
+    but no longer does, that it left it, and how (still running, or its exit status and last
+    output)."""
+    running = keyboard.node.running()
+    ended = "exited with status %s%s" % (keyboard.node.proc.returncode, last_words(keyboard))
+    did = [r for r in earlier if wanted is not None and wanted(r)]
+    if did and not any(wanted(r) for r in seen):
+        what = "%s (node %s)" % (registered_words(did[0]), did[0].node)
+        if running:
+            return ("%s %s, then unregistered it while still running: a node that takes one message (e.g. "
+                    "rospy.wait_for_message, ros::topic::waitForMessage) stops listening after it; keep a "
+                    "subscriber and spin" % (name, what))
+        return "%s %s, then %s" % (name, what, ended)
     if seen:
         names = sorted({n for r in seen for n in own_names(r.publishes + r.subscribes + r.services)})
-        return "%s registered %s (%s)" % (name, ", ".join(r.node for r in seen), ", ".join(names) or "no topics")
-    if not keyboard.node.running():
-        return "%s exited with status %s" % (name, keyboard.node.proc.returncode)
+        words = "%s registered %s (%s)" % (name, ", ".join(r.node for r in seen), ", ".join(names) or "no topics")
+        return words if running else "%s, then %s" % (words, ended)
+    if not running:
+        return "%s %s" % (name, ended)
     return "%s registered no node" % name
+
+
+def registered_words(reg: Registration) -> str:
+    """'subscribed /turtle1/pose and published /x' for what a node registered (rospy's routine names left out)."""
+    parts = []
+    for verb, names in (("published", reg.publishes), ("subscribed", reg.subscribes), ("offered", reg.services)):
+        own = own_names(names)
+        if own:
+            parts.append("%s %s" % (verb, ", ".join(own)))
+    return " and ".join(parts) or "registered nothing of its own"
 
 
 def not_found_message(pkg: str, what: str, tried: Sequence[str]) -> str:

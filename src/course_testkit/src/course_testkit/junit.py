@@ -13,8 +13,10 @@ import re
 import xml.etree.ElementTree as ET
 from typing import Iterable, List, NamedTuple, Optional, Sequence, Tuple
 
-# unittest's own words before the message a check passed to assertTrue/assertFalse.
-_PREFIXES = ("False is not true : ", "True is not false : ")
+# unittest's own words before the message a check passed to an assertion (checks turn them off
+# with longMessage = False; a check that forgets still reads as its sentence alone).
+_UNITTEST_PREFIX = re.compile(r"^(?:.{0,300}? is not (?:true|false)|unexpectedly None|.{0,300}? is not None"
+                              r"|.{0,300}? != .{0,300}?) : ", re.DOTALL)
 _TRACEBACK = re.compile(r'^\s*(File "|Traceback \(most recent call last\))')
 _TIME_LIMIT = re.compile(r"max time \[([\d.]+)s\] allotted for test \[([^\]]*)\]")
 _NO_RESULTS = re.compile(r"test \[([^\]]*)\] did not generate test results")
@@ -43,7 +45,7 @@ class Suite(NamedTuple):
 
 def clean_message(text: str) -> str:
     """The assertion message a check wrote, from a JUnit failure text: the lines before the
-    traceback, without unittest's "False is not true : " prefix; rostest's own failures (time
+    traceback, without unittest's "None is not true : " kind of prefix; rostest's own failures (time
     limit, no results, missing check node) in plain words."""
     kept = []
     for line in (text or "").strip().splitlines():
@@ -51,9 +53,7 @@ def clean_message(text: str) -> str:
             break
         kept.append(line.rstrip())
     message = "\n".join(kept).strip()
-    for prefix in _PREFIXES:
-        if message.startswith(prefix):
-            message = message[len(prefix):]
+    message = _UNITTEST_PREFIX.sub("", message, count=1)
     limit = _TIME_LIMIT.search(message)
     if limit:
         return "the check [%s] did not finish within its time limit of %s s" % (limit.group(2), limit.group(1))

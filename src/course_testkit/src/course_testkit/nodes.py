@@ -21,15 +21,25 @@ def find_executable(pkg: str, node_type: str) -> str:
     return paths[0]
 
 
+# coreutils' stdbuf library: preloaded, it sets a C program's stdout buffering from _STDBUF_O.
+STDBUF_LIBRARY = "/usr/libexec/coreutils/libstdbuf.so"
+
+
 def unbuffered_env(env: Optional[dict] = None) -> dict:
-    """`env` (default: ours) with Python's output unbuffered, so a student's plain print() reaches
-    the log as it happens, not when the node exits."""
-    return dict(os.environ if env is None else env, PYTHONUNBUFFERED="1")
+    """`env` (default: ours) with output flushed as it is written, as on the terminal a student
+    runs their node in: Python's unbuffered, a C or C++ program's stdout line-buffered (a node's
+    plain print(), printf("...\\n") or std::cout << "...\\n" reaches the log as it happens, not
+    when the node exits or its buffer fills)."""
+    out = dict(os.environ if env is None else env, PYTHONUNBUFFERED="1")
+    if os.path.exists(STDBUF_LIBRARY) and STDBUF_LIBRARY not in out.get("LD_PRELOAD", "").split():
+        out["LD_PRELOAD"] = " ".join(p for p in (out.get("LD_PRELOAD", ""), STDBUF_LIBRARY) if p)
+        out["_STDBUF_O"] = "L"
+    return out
 
 
 class NodeProcess:
     """A child node with its own process group, so stop() also ends anything it started.
-    Python nodes run unbuffered (PYTHONUNBUFFERED=1)."""
+    Its output is flushed line by line (unbuffered_env)."""
 
     def __init__(self, command: Sequence[str], stdin: Union[int, IO, None] = None,
                  log_path: Optional[str] = None, env: Optional[dict] = None,

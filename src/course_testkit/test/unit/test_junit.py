@@ -78,3 +78,15 @@ def test_write_then_read_back(tmp_path):
     suite = junit.parse_file(path)
     assert suite.tests == 2
     assert suite.failed[0].message == "no package named my_chatter\nfound: mychatter"
+
+
+def test_unittest_wording_of_any_assertion_goes():
+    """`None is not true : `, `[] is not true : `, `1 != 2 : `, `unexpectedly None : ` (a check
+    that left longMessage on): the student reads the check's sentence alone."""
+    sentence = "no node of the launch file publishes /turtle1/cmd_vel: add the teleop node"
+    for prefix in ("None is not true : ", "[] is not true : ", "0 is not true : ", "True is not false : ",
+                   "{'a': [1, 2]} is not true : ", "1 != 2 : ", "'x' != 'y' : ", "unexpectedly None : "):
+        assert junit.clean_message(prefix + sentence + "\n" + TRACE) == sentence, prefix
+    assert junit.clean_message(sentence) == sentence
+    kept = "the turtle is not where it was : it moved 2 m"  # a check's own colon stays
+    assert junit.clean_message(kept) == kept

@@ -1,0 +1,22 @@
+// listener: the ROS wiki's C++ subscriber, printing every message it hears on /chatter_talk.
+#include "ros/ros.h"
+#include "std_msgs/String.h"
+
+#include <iostream>
+
+void chatterCallback(const std_msgs::String::ConstPtr& msg)
+{
+  ROS_INFO("I heard: [%s]", msg->data.c_str());
+}
+
+int main(int argc, char **argv)
+{
+  ros::init(argc, argv, "listener", ros::init_options::AnonymousName);
+  ros::NodeHandle n;
+
+  ros::Subscriber sub = n.subscribe("chatter_talk", 1000, chatterCallback);
+
+  ros::spin();
+
+  return 0;
+}

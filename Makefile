@@ -5,7 +5,7 @@ WS := $(ROOT)/catkin_ws
 # Every ROS command runs in the workspace environment, with the venv's python3 first.
 ROSENV := source $(WS)/devel/setup.bash &&
 
-.PHONY: deps build demo test flake-hunt unit rostest grade autograder bench bench-grade docker-check clean
+.PHONY: deps build demo test flake-hunt unit rostest grade autograder bench bench-grade docker-check autograder-check clean
 
 deps:
 	@bash $(ROOT)/tools/deps.sh
@@ -48,8 +48,16 @@ bench-grade: build
 
 # docker/Dockerfile built without a Docker engine, in a debootstrap chroot, then its CMD (the demo)
 # run as the image's user. Needs root; downloads ~1 GB; 10-20 min. DOCKER_CHECK_ARGS="--keep" etc.
+# docker/Dockerfile built and run by podman (root): the demo, then make test in a container; each
+# step's time. DOCKER_CHECK_ARGS="--skip-test" or "--rebuild". See tools/podman_check.py.
 docker-check:
-	@python3 $(ROOT)/tools/dockerfile_chroot.py -f $(ROOT)/docker/Dockerfile --run-cmd $(DOCKER_CHECK_ARGS) $(ROOT)
+	@python3 $(ROOT)/tools/podman_check.py docker-check $(DOCKER_CHECK_ARGS)
+
+# The Gradescope autograder as Gradescope runs it: setup.sh as root in a fresh container of the base
+# image, then run_autograder on a correct, a buggy, a non-building and an attack submission.
+autograder-check:
+	@$(MAKE) --no-print-directory autograder MILESTONES=chatter
+	@python3 $(ROOT)/tools/podman_check.py autograder-check $(ROOT)/autograder.zip
 
 clean:
 	rm -rf $(WS)/build $(WS)/devel $(WS)/build.log

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# A throw-away Debian 12 root for the fresh-machine checks, shared by tools/fresh_debian_check.sh
-# and tools/dockerfile_chroot.py so that both prepare and release a chroot the same way.
+# A throw-away Debian 12 root for the fresh-machine check (tools/fresh_debian_check.sh): it
+# prepares and releases the chroot.
 #
 #   bash tools/chroot_root.sh bootstrap DIR   # debootstrap --variant=minbase bookworm into DIR
 #   bash tools/chroot_root.sh prepare DIR     # mounts, /etc/hosts, DNS, CA certificates, pip config

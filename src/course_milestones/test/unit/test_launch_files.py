@@ -10,6 +10,7 @@ from hypothesis import strategies as st
 
 from course_milestones import launch_files as lf
 from course_milestones.launch_dump import FORMAT
+from course_testkit.waiting import wait_for
 
 LAUNCH = """<launch>
   <param name="linear_scale" value="1.0"/>
@@ -91,7 +92,9 @@ def test_a_command_that_never_ends_is_a_time_out_and_is_ended(tmp_path, monkeypa
     monkeypatch.setattr(lf, "LOAD_TIMEOUT_S", 2.0)
     with pytest.raises(lf.LaunchFileError, match="took more than 2 s"):
         lf.load(str(path))
-    assert not [pid for pid in os.listdir("/proc") if pid.isdigit() and sleeping(pid, seconds)]
+    # killed with SIGKILL when the time is up; the kill lands a moment later on a busy machine
+    gone = wait_for(lambda: not [pid for pid in os.listdir("/proc") if pid.isdigit() and sleeping(pid, seconds)], 5)
+    assert gone, "the command's sleep is still running 5 s after the time-out"
 
 
 def sleeping(pid: str, seconds: str) -> bool:

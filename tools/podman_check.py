@@ -1,0 +1,335 @@
+#!/usr/bin/env python3
+"""The course image and the Gradescope autograder tried in real OCI containers, built and run by
+Debian's podman (as root: this machine's podman needs runc, cgroupfs and no default ulimits).
+
+    sudo python3 tools/podman_check.py image                 # base image (once) + docker/Dockerfile
+    sudo python3 tools/podman_check.py docker-check          # image, its CMD (the demo), make test
+    sudo python3 tools/podman_check.py autograder-check ZIP  # Gradescope's way, in containers
+
+No image registry is reachable here, so `debian:bookworm` is imported once from a debootstrap
+(minbase, the host's Debian mirror) and reused. Each step's wall time is printed at the end.
+Where podman cannot run (not root, podman missing and not installable), this says why and exits
+non-zero: there is no stand-in.
+
+The host's CA bundle is lent to the containers read-only, with a pip.conf pointing at it, so that
+pip reaches PyPI through this machine's TLS-intercepting proxy as the host's pip does; apt uses
+plain http and needs nothing. Neither goes into an image.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+import zipfile
+from pathlib import Path
+from typing import Dict, List, Optional, Sequence, Tuple
+
+ROOT = Path(__file__).resolve().parents[1]
+PODMAN = ["podman", "--runtime", "runc", "--cgroup-manager=cgroupfs"]
+BASE_IMAGE = "debian:bookworm"
+COURSE_IMAGE = "localhost/ros-course"
+AUTOGRADER_IMAGE = "localhost/ros-course-autograder"
+CONTAINERS_CONF = Path("/etc/containers/containers.conf")
+HOST_CA = Path("/etc/ssl/certs/ca-certificates.crt")
+CA_IN_CONTAINER = "/etc/ssl/certs/host-ca-bundle.crt"
+PACKAGES = ("podman", "runc", "debootstrap")
+# (sample, what it is, passed?) graded by run_autograder on the milestone `chatter`.
+AUTOGRADER_SAMPLES = (("lab2_chatter_scripts", "correct", True), ("bad_crash", "buggy", False),
+                      ("bad_build_error", "does not build", False), ("attack_forge_results", "attack", False))
+VISIBILITY = {"hidden", "after_due_date", "after_published", "visible"}
+
+
+class Unavailable(Exception):
+    """podman cannot run here: the reason, for the user."""
+
+
+class Steps:
+    """Each step's wall time, printed as a table at the end."""
+
+    def __init__(self) -> None:
+        self.times: List[Tuple[str, float]] = []
+
+    def run(self, name: str, fn, *args, **kwargs):
+        print("== %s" % name, flush=True)
+        started = time.monotonic()
+        result = fn(*args, **kwargs)
+        self.times.append((name, time.monotonic() - started))
+        print("== %s: %.1f s" % (name, self.times[-1][1]), flush=True)
+        return result
+
+    def table(self) -> str:
+        return "\n".join(["| step | wall time |", "| --- | --- |"]
+                         + ["| %s | %.1f s |" % (name, seconds) for name, seconds in self.times])
+
+
+def podman(*args: str, check: bool = True, log: Optional[Path] = None, **kwargs) -> subprocess.CompletedProcess:
+    """podman with this machine's settings; its output streamed to `log` (or ours)."""
+    command = PODMAN + list(args)
+    if log is None:
+        return subprocess.run(command, check=check, **kwargs)
+    with open(log, "ab") as out:
+        return subprocess.run(command, check=check, stdout=out, stderr=subprocess.STDOUT, **kwargs)
+
+
+def ensure_podman() -> None:
+    """podman, runc and debootstrap installed, and containers.conf without default ulimits."""
+    if os.geteuid() != 0:
+        raise Unavailable("podman here runs as root only (rootless podman has no user namespaces to map "
+                          "on this machine): run it with sudo")
+    missing = [p for p in PACKAGES if shutil.which(p) is None and shutil.which(p, path="/usr/sbin:/sbin") is None]
+    if missing:
+        print("installing %s" % " ".join(missing), flush=True)
+        env = dict(os.environ, DEBIAN_FRONTEND="noninteractive")
+        if subprocess.run(["apt-get", "update", "-qq"], env=env).returncode != 0 or subprocess.run(
+                ["apt-get", "install", "-y", "-qq"] + missing, env=env).returncode != 0:
+            raise Unavailable("could not install %s with apt-get" % " ".join(missing))
+    text = CONTAINERS_CONF.read_text() if CONTAINERS_CONF.exists() else ""
+    wanted = without_default_ulimits(text)
+    if wanted != text:
+        CONTAINERS_CONF.parent.mkdir(parents=True, exist_ok=True)
+        CONTAINERS_CONF.write_text(wanted)
+    if podman("info", check=False, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL).returncode != 0:
+        raise Unavailable("`podman info` fails here: %s" % podman("info", check=False, stdout=subprocess.PIPE,
+                                                                   stderr=subprocess.STDOUT, text=True).stdout[-500:])
+
+
+def without_default_ulimits(conf: str) -> str:
+    """containers.conf text with `default_ulimits = []` in its [containers] table (podman's default
+    nofile limit cannot be set in this sandbox: the containers keep the host's)."""
+    if re.search(r"^\s*default_ulimits\s*=\s*\[\s*\]", conf, re.MULTILINE):
+        return conf
+    if re.search(r"^\[containers\][ \t]*$", conf, re.MULTILINE):
+        return re.sub(r"^\[containers\][ \t]*$", "[containers]\ndefault_ulimits = []", conf, count=1, flags=re.MULTILINE)
+    return conf + ("\n" if conf and not conf.endswith("\n") else "") + "[containers]\ndefault_ulimits = []\n"
+
+
+def image_exists(name: str) -> bool:
+    return podman("image", "exists", name, check=False).returncode == 0
+
+
+def host_mirror() -> str:
+    sources = Path("/etc/apt/sources.list.d/debian.sources")
+    if sources.exists():
+        m = re.search(r"^URIs:\s*(\S+)", sources.read_text(), re.MULTILINE)
+        if m:
+            return m.group(1)
+    return "http://deb.debian.org/debian"
+
+
+def import_base(log: Path) -> None:
+    """debian:bookworm from a minbase debootstrap, imported once (skipped when present)."""
+    if image_exists(BASE_IMAGE):
+        print("%s already imported" % BASE_IMAGE, flush=True)
+        return
+    folder = Path(tempfile.mkdtemp(prefix="bookworm-", dir="/var/tmp"))
+    try:
+        with open(log, "ab") as out:
+            subprocess.run(["debootstrap", "--variant=minbase", "bookworm", str(folder), host_mirror()],
+                           check=True, stdout=out, stderr=subprocess.STDOUT)
+        tar = subprocess.Popen(["tar", "-C", str(folder), "-c", "."], stdout=subprocess.PIPE)
+        podman("import", "-", BASE_IMAGE, stdin=tar.stdout, log=log)
+        if tar.wait() != 0:
+            raise subprocess.CalledProcessError(tar.returncode, "tar")
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+def network_mounts(scratch: Path) -> List[str]:
+    """-v options lending the host's CA bundle and a pip.conf that uses it (see the docstring)."""
+    if not HOST_CA.exists():
+        return []
+    pip_conf = scratch / "pip.conf"
+    pip_conf.write_text("[global]\ncert = %s\n" % CA_IN_CONTAINER)
+    return ["-v", "%s:%s:ro" % (HOST_CA, CA_IN_CONTAINER), "-v", "%s:/etc/pip.conf:ro" % pip_conf]
+
+
+def build_course_image(scratch: Path, log: Path) -> None:
+    podman("build", "--network", "host", *network_mounts(scratch), "-f", str(ROOT / "docker" / "Dockerfile"),
+           "-t", COURSE_IMAGE, str(ROOT), log=log)
+
+
+def run_in_image(image: str, command: Sequence[str], log: Path, extra: Sequence[str] = ()) -> int:
+    """A fresh container of `image` (its own loopback-only network), removed afterwards; its exit code."""
+    return podman("run", "--rm", "--network", "none", "--shm-size", "1g", *extra, image, *command,
+                  check=False, log=log).returncode
+
+
+def last_line(path: Path, pattern: str) -> str:
+    lines = [line for line in path.read_text(errors="replace").splitlines() if re.search(pattern, line)]
+    return lines[-1].strip() if lines else "(no such line)"
+
+
+def docker_check(opts: argparse.Namespace, steps: Steps, scratch: Path, logs: Path) -> bool:
+    steps.run("base image import", import_base, logs / "import.log")
+    steps.run("image build", build_course_image, scratch, logs / "build.log")
+    if opts.rebuild:
+        steps.run("image build, again (cached layers)", build_course_image, scratch, logs / "build-again.log")
+    ok = True
+    code = steps.run("demo (the image's CMD, as user student)", run_in_image, COURSE_IMAGE, [], logs / "demo.log")
+    print("demo: exit %s; %s" % (code, last_line(logs / "demo.log", r"\S")), flush=True)
+    ok &= code == 0
+    if opts.grade_class:
+        ok &= steps.run("make grade of %s in a container, as root" % opts.grade_class, grade_class,
+                        Path(opts.grade_class).resolve(), scratch, logs / "grade.log")
+    if not opts.skip_test:
+        code = steps.run("make test in a container, as user student", run_in_image, COURSE_IMAGE, ["make", "test"],
+                         logs / "test.log")
+        print("make test: exit %s; %s" % (code, last_line(logs / "test.log", r"passed|failed|error")), flush=True)
+        ok &= code == 0
+    return ok
+
+
+def grade_class(folder: Path, scratch: Path, log: Path) -> bool:
+    """A TA's `make grade` in the image: the class folder read-only, the grades folder writable."""
+    grades = scratch / "grades"
+    grades.mkdir()
+    code = run_in_image(COURSE_IMAGE, ["make", "grade", "SUBMISSIONS=/class", "GRADES=/grades"], log,
+                        ["--user", "root", "-v", "%s:/class:ro" % folder, "-v", "%s:/grades" % grades])
+    gradebook = grades / "gradebook.csv"
+    rows = gradebook.read_text().splitlines()[1:] if gradebook.exists() else []
+    print("make grade: exit %s; %d students in gradebook.csv; %s" % (
+        code, len(rows), last_line(log, r"^isolation: ")), flush=True)
+    return bool(rows)
+
+
+def unpack_zip(zip_path: Path, target: Path) -> None:
+    """As Gradescope does (unzip keeps the modes the zip records; zipfile does not)."""
+    with zipfile.ZipFile(zip_path) as zf:
+        for info in zf.infolist():
+            path = Path(zf.extract(info, target))
+            mode = (info.external_attr >> 16) & 0o777
+            if mode:
+                path.chmod(mode)
+
+
+def build_autograder_image(zip_path: Path, scratch: Path, log: Path) -> None:
+    """A fresh container of the base image, the zip in /autograder/source, setup.sh as root;
+    committed as the image every submission is graded in."""
+    source = scratch / "source"
+    unpack_zip(zip_path, source)
+    name = "ros-course-autograder-setup"
+    podman("rm", "-f", name, check=False, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    script = ("set -e; mkdir -p /autograder/results; cp -a /mnt/source /autograder/source; "
+              "bash /autograder/source/setup.sh; cp /autograder/source/run_autograder /autograder/run_autograder")
+    try:
+        podman("run", "--name", name, "--network", "host", *network_mounts(scratch),
+               "-v", "%s:/mnt/source:ro" % source, BASE_IMAGE, "bash", "-c", script, log=log)
+        podman("commit", name, AUTOGRADER_IMAGE, log=log)
+    finally:
+        podman("rm", "-f", name, check=False, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+
+
+def results_problems(results: Dict, passed: bool) -> List[str]:
+    """What is wrong with a results.json against Gradescope's format and the expected verdict."""
+    problems = []
+    if not isinstance(results.get("score"), (int, float)):
+        problems.append("score is not a number")
+    if results.get("visibility", "visible") not in VISIBILITY:
+        problems.append("visibility %r" % results.get("visibility"))
+    tests = results.get("tests") or []
+    if not tests:
+        problems.append("no tests")
+    for test in tests:
+        for key, kind in (("name", str), ("output", str), ("score", (int, float)), ("max_score", (int, float))):
+            if not isinstance(test.get(key), kind):
+                problems.append("test %r: %s missing or not %s" % (test.get("name"), key, kind))
+        want = "passed" if passed else "failed"
+        if test.get("status") != want:
+            problems.append("test %r: %s, expected %s" % (test.get("name"), test.get("status"), want))
+    if "isolation: " not in results.get("output", ""):
+        problems.append("the output does not say which isolation was in force")
+    return problems
+
+
+def grade_in_container(sample: str, scratch: Path, log: Path) -> Tuple[Dict, List[str]]:
+    """run_autograder on one sample, in a fresh container of the autograder image, as root."""
+    submission = scratch / "submissions" / sample
+    results = scratch / "results" / sample
+    shutil.copytree(ROOT / "tests" / "submissions" / sample, submission)
+    (submission / "expected.json").unlink()
+    results.mkdir(parents=True)
+    code = run_in_image(AUTOGRADER_IMAGE, ["/autograder/run_autograder"], log,
+                        ["-v", "%s:/autograder/submission" % submission, "-v", "%s:/autograder/results" % results])
+    path = results / "results.json"
+    if not path.exists():
+        return {}, ["run_autograder exited %s without results.json" % code]
+    return json.loads(path.read_text()), []
+
+
+def autograder_check(opts: argparse.Namespace, steps: Steps, scratch: Path, logs: Path) -> bool:
+    zip_path = Path(opts.zip).resolve()
+    with zipfile.ZipFile(zip_path) as zf:
+        milestones = zf.read("milestones.txt").decode().split() if "milestones.txt" in zf.namelist() else []
+    if milestones != ["chatter"]:
+        raise Unavailable("%s must grade the milestone chatter alone (make autograder MILESTONES=chatter), "
+                          "not %s" % (zip_path, milestones or "every milestone"))
+    steps.run("base image import", import_base, logs / "import.log")
+    steps.run("setup.sh as root in a fresh container", build_autograder_image, zip_path, scratch,
+              logs / "setup.log")
+    ok = True
+    for sample, what, passed in AUTOGRADER_SAMPLES:
+        results, problems = steps.run("run_autograder: %s (%s)" % (sample, what), grade_in_container, sample,
+                                      scratch, logs / ("grade-%s.log" % sample))
+        problems = problems or results_problems(results, passed)
+        isolation = re.search(r"isolation: ([^:\n]+)", results.get("output", ""))
+        print("%s: score %s, %s; isolation %s%s" % (
+            sample, results.get("score"), ", ".join("%s %s" % (t.get("name", "?").split(":")[0], t.get("status"))
+                                                    for t in results.get("tests", [])),
+            isolation.group(1) if isolation else "?", "; PROBLEMS: " + "; ".join(problems) if problems else ""),
+            flush=True)
+        ok &= not problems
+    return ok
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = parser.add_subparsers(dest="action", required=True)
+    image = sub.add_parser("image", help="import the base image (once) and build docker/Dockerfile")
+    image.add_argument("--rebuild", action="store_true", help="build twice: the second from cached layers")
+    check = sub.add_parser("docker-check", help="the image, its CMD, then make test in a container")
+    check.add_argument("--rebuild", action="store_true", help="build twice: the second from cached layers")
+    check.add_argument("--skip-test", action="store_true", help="do not run make test in the container")
+    check.add_argument("--grade-class", metavar="DIR", help="also `make grade` this class folder in the image")
+    grader = sub.add_parser("autograder-check", help="Gradescope's setup.sh and run_autograder in containers")
+    grader.add_argument("zip", help="autograder.zip made with MILESTONES=chatter")
+    parser.add_argument("--logs", default=str(ROOT / "podman-logs"), help="where each step's log goes")
+    opts = parser.parse_args(argv)
+    logs = Path(opts.logs)
+    logs.mkdir(parents=True, exist_ok=True)
+    steps = Steps()
+    scratch = Path(tempfile.mkdtemp(prefix="podman-check-"))
+    scratch.chmod(0o755)
+    try:
+        ensure_podman()
+        if opts.action == "image":
+            steps.run("base image import", import_base, logs / "import.log")
+            steps.run("image build", build_course_image, scratch, logs / "build.log")
+            if opts.rebuild:
+                steps.run("image build, again (cached layers)", build_course_image, scratch, logs / "build-again.log")
+            ok = True
+        elif opts.action == "docker-check":
+            ok = docker_check(opts, steps, scratch, logs)
+        else:
+            ok = autograder_check(opts, steps, scratch, logs)
+    except Unavailable as e:
+        print("podman_check: %s" % e, file=sys.stderr)
+        return 2
+    except subprocess.CalledProcessError as e:
+        print("podman_check: %s failed (exit %s); see the logs in %s" % (" ".join(map(str, e.cmd))[:200],
+                                                                         e.returncode, logs), file=sys.stderr)
+        ok = False
+    finally:
+        shutil.rmtree(scratch, ignore_errors=True)
+    print(steps.table())
+    print("podman_check %s: %s (logs in %s)" % (opts.action, "ok" if ok else "FAILED", logs))
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -5,7 +5,7 @@ WS := $(ROOT)/catkin_ws
 # Every ROS command runs in the workspace environment, with the venv's python3 first.
 ROSENV := source $(WS)/devel/setup.bash &&
 
-.PHONY: deps build demo test flake-hunt unit rostest grade autograder bench bench-grade docker-check autograder-check clean
+.PHONY: deps build demo lab test flake-hunt unit rostest grade autograder bench bench-grade docker-check autograder-check clean
 
 deps:
 	@bash $(ROOT)/tools/deps.sh
@@ -33,6 +33,15 @@ GRADES ?= $(ROOT)/grades
 grade: build
 	@$(ROSENV) cd $(ROOT) && rosrun course_grader grade $(if $(SUBMISSIONS),--class $(abspath $(SUBMISSIONS))) \
 	  --out $(GRADES) $(if $(JOBS),--jobs $(JOBS))
+
+# The lab page with turtlesim (http://127.0.0.1:8080/). In the course image LAB_ADDRESS=0.0.0.0 (the
+# port published by the container engine), which requires a token: the URL printed carries it.
+LAB_ADDRESS ?= 127.0.0.1
+LAB_URL_HOST ?=
+LAB_PORT ?= 8080
+lab: build
+	@$(ROSENV) roslaunch course_web lab_view.launch turtlesim:=true address:=$(LAB_ADDRESS) port:=$(LAB_PORT) \
+	  url_host:=$(LAB_URL_HOST)
 
 # Gradescope autograder: setup.sh + run_autograder + this repository; MILESTONES="chatter ..." grades only those.
 autograder: build

@@ -3,6 +3,9 @@ verdict against the sample's expected.json:
   {"<milestone>": {"passed": true}} or {"<milestone>": {"passed": false, "reason": "<regex>"}}
 The regex must match the milestone's output in the sample's Gradescope results.json (the
 failing check in words plus the student's log tails). Only the listed milestones are graded.
+`"needs_isolation": true` (the attack samples): the verdict holds only where the sandbox isolates
+student code; where it ran with the grader's rights (isolation `none`: not root and no
+namespaces, e.g. `make test` as a user in a container), the test is skipped, saying so.
 Afterwards no process of any run may be left (bad samples fork, setsid, ignore SIGINT).
 
 The grading starts as soon as the session knows these tests will run (start_early, called by
@@ -103,6 +106,9 @@ def test_verdict(graded: Path, sample: str, milestone: str, expected: Dict) -> N
     tests = _tests_of(graded, sample)
     assert milestone in tests, "%s: no verdict for %s (graded: %s)" % (sample, milestone, sorted(tests))
     test = tests[milestone]
+    overall = json.loads((graded / sample / "results.json").read_text())["output"]
+    if expected.get("needs_isolation") and "isolation: none" in overall:
+        pytest.skip("student code ran with the grader's rights here (isolation none): an attack succeeds")
     want = "passed" if expected["passed"] else "failed"
     assert test["status"] == want, "%s/%s: expected %s, got %s:\n%s" % (sample, milestone, want, test["status"],
                                                                       test["output"][:MESSAGE_CHARS])

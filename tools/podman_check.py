@@ -174,6 +174,7 @@ def docker_check(opts: argparse.Namespace, steps: Steps, scratch: Path, logs: Pa
     code = steps.run("demo (the image's CMD, as user student)", run_in_image, COURSE_IMAGE, [], logs / "demo.log")
     print("demo: exit %s; %s" % (code, last_line(logs / "demo.log", r"\S")), flush=True)
     ok &= code == 0
+    ok &= steps.run("lab page through a published port", lab_check, logs / "lab.log")
     if opts.grade_class:
         ok &= steps.run("make grade of %s in a container, as root" % opts.grade_class, grade_class,
                         Path(opts.grade_class).resolve(), scratch, logs / "grade.log")
@@ -196,6 +197,85 @@ def grade_class(folder: Path, scratch: Path, log: Path) -> bool:
     print("make grade: exit %s; %d students in gradebook.csv; %s" % (
         code, len(rows), last_line(log, r"^isolation: ")), flush=True)
     return bool(rows)
+
+
+def free_port() -> int:
+    import socket
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def http_status(url: str) -> Tuple[int, str]:
+    import urllib.error
+    import urllib.request
+    try:
+        with urllib.request.urlopen(url, timeout=10) as answer:
+            return answer.status, answer.read().decode("utf-8", "replace")
+    except urllib.error.HTTPError as e:
+        return e.code, ""
+
+
+def drive_turtle(url: str) -> Tuple[float, float]:
+    """Through the page's websocket (rosbridge v2, as the page's teleop panel does): turtle1's x
+    before, and after 2 s of forward Twists."""
+    import asyncio
+
+    import tornado.websocket  # Debian's python3-tornado, as the course's own tests use
+
+    async def drive() -> Tuple[float, float]:
+        socket = await tornado.websocket.websocket_connect(url.replace("http://", "ws://"), connect_timeout=10)
+        send = lambda message: socket.write_message(json.dumps(message))  # noqa: E731
+        await send({"op": "subscribe", "topic": "/turtle1/pose", "type": "turtlesim/Pose"})
+        await send({"op": "advertise", "topic": "/turtle1/cmd_vel", "type": "geometry_msgs/Twist"})
+
+        async def pose_x() -> float:
+            while True:
+                message = json.loads(await asyncio.wait_for(socket.read_message(), 10))
+                if message.get("topic") == "/turtle1/pose":
+                    return float(message["msg"]["x"])
+        before = await pose_x()
+        twist = {"linear": {"x": 2.0, "y": 0.0, "z": 0.0}, "angular": {"x": 0.0, "y": 0.0, "z": 0.0}}
+        for _ in range(20):
+            await send({"op": "publish", "topic": "/turtle1/cmd_vel", "msg": twist})
+            await asyncio.sleep(0.1)
+        after, until = before, time.monotonic() + 2.0
+        while time.monotonic() < until:  # the poses queued while publishing, then fresh ones
+            after = await pose_x()
+        socket.close()
+        return before, after
+    return asyncio.run(drive())
+
+
+def lab_check(log: Path) -> bool:
+    """`make lab` in a container with its port published on the host's loopback: the URL it prints,
+    the page through the published port with the token, refused without it, the turtle moved
+    through the page's websocket."""
+    port = free_port()
+    name = "ros-course-lab-check"
+    podman("rm", "-f", name, check=False, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    podman("run", "-d", "--name", name, "-p", "127.0.0.1:%d:8080" % port, COURSE_IMAGE, "make", "lab", log=log)
+    try:
+        deadline = time.monotonic() + 120
+        url = None
+        while url is None and time.monotonic() < deadline:
+            out = podman("logs", name, check=False, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True).stdout
+            m = re.search(r"lab_view: open (http://127\.0\.0\.1:8080/\?token=\S+)", out)
+            url = m.group(1).replace(":8080/", ":%d/" % port) if m else None
+            time.sleep(0.5)
+        if url is None:
+            print("lab: no URL with a token printed within 120 s", flush=True)
+            return False
+        with_token, page = http_status(url)
+        without, _ = http_status("http://127.0.0.1:%d/" % port)
+        before, after = drive_turtle(url)
+        ok = with_token == 200 and "<html" in page.lower() and without in (401, 403) and after - before > 0.5
+        print("lab: %s -> %d; without the token -> %d; turtle1 x %.2f -> %.2f driven through the page's "
+              "websocket" % (re.sub(r"token=\S+", "token=...", url), with_token, without, before, after), flush=True)
+        return ok
+    finally:
+        podman("logs", name, check=False, log=log)
+        podman("rm", "-f", name, check=False, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
 
 
 def unpack_zip(zip_path: Path, target: Path) -> None:

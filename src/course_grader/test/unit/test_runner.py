@@ -57,3 +57,18 @@ def test_each_submission_gets_its_verdicts_and_one_progress_line(tmp_path, monke
     assert (out / "bob" / "checkpoint1" / "junit.xml").is_file()
     assert json.loads((out / "_work" / "durations.json").read_text())["chatter"] == 1.5
     assert "isolation: " in alice["output"]
+
+
+def test_autograder_files_without_git_follow_the_gitignore(tmp_path):
+    """The course image has no .git: the zip's files then come from a walk that honours .gitignore."""
+    from course_grader.autograder import ignored, repo_files
+    patterns = ["/.venv/", "/catkin_ws/build/", "__pycache__/", "*.pyc", "/autograder.zip"]
+    assert ignored(".venv/", patterns) and ignored("catkin_ws/build/", patterns)
+    assert ignored("src/a/__pycache__/", patterns) and ignored("src/a/x.pyc", patterns)
+    assert ignored("autograder.zip", patterns) and not ignored("src/autograder.zip", patterns)
+    assert not ignored("src/a/x.py", patterns) and not ignored("catkin_ws/buildx/", patterns)
+    (tmp_path / ".gitignore").write_text("# built\n/.venv/\n*.pyc\n")
+    for rel in ("src/pkg/a.py", "src/pkg/a.pyc", ".venv/bin/python3", "setup.sh", "tests/submissions/x/y.py"):
+        (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / rel).write_text("x")
+    assert repo_files(str(tmp_path)) == [".gitignore", "setup.sh", "src/pkg/a.py"]

@@ -44,6 +44,9 @@ from course_testkit.waiting import wait_for
 SAME_NAME = "new node registered with same name"
 REGISTER_TIMEOUT = 15.0   # s: how long an executable on a terminal has to register what is asked
 SETTLED = 3.0             # s: a node registered for this long with other topics is not the one asked for
+# Why a node that subscribed no longer does, while it still runs.
+ONE_MESSAGE = ("a node that takes one message (e.g. rospy.wait_for_message, ros::topic::waitForMessage) stops "
+               "listening after it; keep a subscriber and spin")
 # roslaunch escalates SIGINT -> SIGTERM -> SIGKILL on its nodes within ~17 s; stop it within that.
 ROSLAUNCH_STOP_S = 25.0
 
@@ -265,9 +268,7 @@ def describe_attempt(name: str, keyboard: PtyKeyboard, seen: Sequence[Registrati
     if did and not any(wanted(r) for r in seen):
         what = "%s (node %s)" % (registered_words(did[0]), did[0].node)
         if running:
-            return ("%s %s, then unregistered it while still running: a node that takes one message (e.g. "
-                    "rospy.wait_for_message, ros::topic::waitForMessage) stops listening after it; keep a "
-                    "subscriber and spin" % (name, what))
+            return "%s %s, then unregistered it while still running: %s" % (name, what, ONE_MESSAGE)
         return "%s %s, then %s" % (name, what, ended)
     if seen:
         names = sorted({n for r in seen for n in own_names(r.publishes + r.subscribes + r.services)})

@@ -32,9 +32,11 @@ def allowed(required: Optional[str], presented: Optional[str]) -> bool:
     return presented is not None and hmac.compare_digest(required.encode(), presented.encode())
 
 
-def page_url(address: str, port: int, token: Optional[str]) -> str:
-    """The URL to open, token included."""
-    host = socket.gethostname() if address in ("0.0.0.0", "", "::") else address
+def page_url(address: str, port: int, token: Optional[str], url_host: str = "") -> str:
+    """The URL to open, token included; on `url_host` when given (in a container, the address
+    the host publishes the port on), else on the address listened on (this machine's name for
+    any address)."""
+    host = url_host or (socket.gethostname() if address in ("0.0.0.0", "", "::") else address)
     if ":" in host:
         host = "[%s]" % host
     return "http://%s:%d/%s" % (host, port, "?%s=%s" % (TOKEN_PARAM, token) if token else "")

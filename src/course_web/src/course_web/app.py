@@ -1,6 +1,7 @@
 """lab_view: the node behind `roslaunch course_web lab_view.launch`.
 
     rosrun course_web lab_view [--port 8080] [--address 127.0.0.1] [--token T] [--max-message-bytes N]
+                               [--url-host H]
 
 It serves the page and the rosbridge v2 websocket on one port and prints the URL to open.
 """
@@ -33,6 +34,8 @@ def parse(argv: List[str]) -> argparse.Namespace:
                         "a random one, printed, otherwise)")
     parser.add_argument("--max-message-bytes", type=int, default=DEFAULT_MAX_MESSAGE_BYTES)
     parser.add_argument("--www", default="", help="the page's folder (default: this package's www)")
+    parser.add_argument("--url-host", default="", help="the host the printed URL names (in a container: "
+                        "the address the host publishes the port on)")
     return parser.parse_args(argv)
 
 
@@ -49,7 +52,7 @@ async def serve(args: argparse.Namespace, token: Optional[str]) -> None:
     for sig in (signal.SIGINT, signal.SIGTERM):
         loop.add_signal_handler(sig, stop.set)
     rospy.on_shutdown(lambda: loop.call_soon_threadsafe(stop.set))
-    url = access.page_url(args.address, args.port, token)
+    url = access.page_url(args.address, args.port, token, args.url_host)
     print("lab_view: open %s" % url, flush=True)
     rospy.loginfo("lab_view: serving the lab on %s", url)
     await stop.wait()

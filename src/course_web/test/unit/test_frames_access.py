@@ -63,3 +63,4 @@ def test_allowed_compares_the_token():
 def test_the_printed_url_carries_the_token():
     assert access.page_url("127.0.0.1", 8080, None) == "http://127.0.0.1:8080/"
     assert access.page_url("10.0.0.5", 9000, "t0k") == "http://10.0.0.5:9000/?token=t0k"
+    assert access.page_url("0.0.0.0", 8080, "t0k", "127.0.0.1") == "http://127.0.0.1:8080/?token=t0k"

@@ -4,8 +4,9 @@ verdict against the sample's expected.json:
 The regex must match the milestone's output in the sample's Gradescope results.json (the
 failing check in words plus the student's log tails). Only the listed milestones are graded.
 `"needs_isolation": true` (the attack samples): the verdict holds only where the sandbox isolates
-student code; where it ran with the grader's rights (isolation `none`: not root and no
-namespaces, e.g. `make test` as a user in a container), the test is skipped, saying so.
+student code; where it would run with the grader's rights (isolation `none`: not root and no
+namespaces, e.g. `make test` as a user in a container), the sample is not graded and its test is
+skipped, saying so.
 Afterwards no process of any run may be left (bad samples fork, setsid, ignore SIGINT).
 
 The grading starts as soon as the session knows these tests will run (start_early, called by
@@ -25,10 +26,23 @@ from typing import Dict, List, Optional, Tuple
 
 import pytest
 
+from course_sandbox import levels
+from course_sandbox.policy import DEFAULT_USER
 from course_testkit.nodes import NodeProcess
 
 ROOT = Path(__file__).resolve().parents[1]
-SAMPLES = sorted(p.parent for p in ROOT.glob("tests/submissions/*/expected.json"))
+ALL_SAMPLES = sorted(p.parent for p in ROOT.glob("tests/submissions/*/expected.json"))
+
+
+def needs_isolation(sample: Path) -> bool:
+    return any(e.get("needs_isolation") for e in json.loads((sample / "expected.json").read_text()).values())
+
+
+# Where student code would run with the grader's rights (isolation none: not root, no namespaces,
+# e.g. `make test` as a user in a container), an attack sample is not graded at all: its fork bomb
+# would spend this user's process limit under every other run, the test's own included.
+ISOLATION = levels.detect(DEFAULT_USER)
+SAMPLES = [s for s in ALL_SAMPLES if not (ISOLATION == levels.NONE and needs_isolation(s))]
 JOBS = 3  # the grader's default: 20 reference gradings at 3 gave 0 wrong verdicts (bench/grade_bench.py)
 GRADER_TIMEOUT_S = 3600
 STOP_TIMEOUT_S = 30.0
@@ -78,7 +92,7 @@ def start_early(config: pytest.Config) -> None:
 
 def expectations() -> List[Tuple[str, str, Dict]]:
     found = []
-    for sample in SAMPLES:
+    for sample in ALL_SAMPLES:
         for milestone, expected in json.loads((sample / "expected.json").read_text()).items():
             found.append((sample.name, milestone, expected))
     return found
@@ -103,12 +117,11 @@ def _tests_of(graded: Path, sample: str) -> Dict[str, Dict]:
 
 @pytest.mark.parametrize("sample,milestone,expected", expectations(), ids=lambda v: v if isinstance(v, str) else "")
 def test_verdict(graded: Path, sample: str, milestone: str, expected: Dict) -> None:
+    if ROOT / "tests" / "submissions" / sample not in SAMPLES:
+        pytest.skip("not graded: student code would run with the grader's rights here (isolation %s)" % ISOLATION)
     tests = _tests_of(graded, sample)
     assert milestone in tests, "%s: no verdict for %s (graded: %s)" % (sample, milestone, sorted(tests))
     test = tests[milestone]
-    overall = json.loads((graded / sample / "results.json").read_text())["output"]
-    if expected.get("needs_isolation") and "isolation: none" in overall:
-        pytest.skip("student code ran with the grader's rights here (isolation none): an attack succeeds")
     want = "passed" if expected["passed"] else "failed"
     assert test["status"] == want, "%s/%s: expected %s, got %s:\n%s" % (sample, milestone, want, test["status"],
                                                                       test["output"][:MESSAGE_CHARS])

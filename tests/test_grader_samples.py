@@ -173,7 +173,7 @@ def test_every_verdict_says_which_isolation_was_in_force(graded: Path) -> None:
 
 def test_the_student_ros_logs_are_copied_out(graded: Path) -> None:
     """The trusted side copies each run's ROS logs (the student's node logs) into the outputs."""
-    copied = sorted(p.name for p in (graded / "attack_write_outputs" / "chatter" / "ros_log").rglob("*.log"))
+    copied = sorted(p.name for p in (graded / "lab2_chatter_scripts" / "chatter" / "ros_log").rglob("*.log"))
     assert any(name.startswith("talker") for name in copied), copied
 
 

@@ -109,6 +109,11 @@ def without_default_ulimits(conf: str) -> str:
     return conf + ("\n" if conf and not conf.endswith("\n") else "") + "[containers]\ndefault_ulimits = []\n"
 
 
+def remove_container(name: str) -> None:
+    """Remove the container `name` if there is one (left by an interrupted check, or done with)."""
+    podman("rm", "-f", name, check=False, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+
+
 def image_exists(name: str) -> bool:
     return podman("image", "exists", name, check=False).returncode == 0
 
@@ -253,7 +258,7 @@ def lab_check(log: Path) -> bool:
     through the page's websocket."""
     port = free_port()
     name = "ros-course-lab-check"
-    podman("rm", "-f", name, check=False, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    remove_container(name)
     podman("run", "-d", "--name", name, "-p", "127.0.0.1:%d:8080" % port, COURSE_IMAGE, "make", "lab", log=log)
     try:
         deadline = time.monotonic() + 120
@@ -275,7 +280,7 @@ def lab_check(log: Path) -> bool:
         return ok
     finally:
         podman("logs", name, check=False, log=log)
-        podman("rm", "-f", name, check=False, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        remove_container(name)
 
 
 def unpack_zip(zip_path: Path, target: Path) -> None:
@@ -294,7 +299,7 @@ def build_autograder_image(zip_path: Path, scratch: Path, log: Path) -> None:
     source = scratch / "source"
     unpack_zip(zip_path, source)
     name = "ros-course-autograder-setup"
-    podman("rm", "-f", name, check=False, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    remove_container(name)
     script = ("set -e; mkdir -p /autograder/results; cp -a /mnt/source /autograder/source; "
               "bash /autograder/source/setup.sh; cp /autograder/source/run_autograder /autograder/run_autograder")
     try:
@@ -302,7 +307,7 @@ def build_autograder_image(zip_path: Path, scratch: Path, log: Path) -> None:
                "-v", "%s:/mnt/source:ro" % source, BASE_IMAGE, "bash", "-c", script, log=log)
         podman("commit", name, AUTOGRADER_IMAGE, log=log)
     finally:
-        podman("rm", "-f", name, check=False, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        remove_container(name)
 
 
 def results_problems(results: Dict, passed: bool) -> List[str]:

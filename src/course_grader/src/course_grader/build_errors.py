@@ -51,8 +51,9 @@ def summarise(log: str, ws: str, lines: int = SUMMARY_LINES) -> str:
     all_lines = [_strip_colour(line.rstrip()) for line in text.splitlines()]
     targets = _failed_targets(all_lines)
     compiled = _compiler_errors(all_lines)
-    linked = _linker_errors(all_lines, targets)
-    hints = _hints(all_lines, compiled, linked, targets, message_packages(text))
+    undefined = _undefined(all_lines, targets)
+    linked = _linker_errors(all_lines, undefined)
+    hints = _hints(all_lines, compiled, undefined, targets, message_packages(text))
     first = compiled + linked
     rest = [] if first else _error_blocks(all_lines)
     if not first and not rest:
@@ -113,9 +114,9 @@ class Undefined(NamedTuple):
     target: Optional[Target]
 
 
-def _linker_errors(lines: Sequence[str], targets: Dict[str, Target]) -> List[str]:
+def _linker_errors(lines: Sequence[str], found: Sequence["Undefined"]) -> List[str]:
     """Each undefined reference once (by symbol), then the linker's last word."""
-    undefined = sorted(_undefined(lines, targets), key=lambda u: u.symbol.startswith(_PLUMBING))
+    undefined = sorted(found, key=lambda u: u.symbol.startswith(_PLUMBING))
     if not undefined:
         return [line for line in lines if _LINKER_DONE.match(line)][:1]
     kept = []
@@ -181,8 +182,8 @@ def _error_blocks(lines: Sequence[str]) -> List[str]:
     return kept
 
 
-def _hints(lines: Sequence[str], compiled: Sequence[str], linked: Sequence[str], targets: Dict[str, Target],
-           own_messages: Iterable[str]) -> List[str]:
+def _hints(lines: Sequence[str], compiled: Sequence[str], undefined: Sequence["Undefined"],
+           targets: Dict[str, Target], own_messages: Iterable[str]) -> List[str]:
     hints: List[str] = []
     own = set(own_messages)
     for line in compiled:
@@ -191,7 +192,6 @@ def _hints(lines: Sequence[str], compiled: Sequence[str], linked: Sequence[str],
         if missing:
             hints.append(_missing_header_hint(missing.group("header"), missing.group("package"),
                                               _compiled_by(m.group("file"), targets), own))
-    undefined = _undefined(lines, targets)
     ros = [u for u in undefined if u.symbol.startswith(_ROS_NAMESPACES)]
     if ros:
         target = ros[0].target or Target("", "<target>")

@@ -7,15 +7,22 @@ hits every way alike. Two times per run: /spawn available (the probe rospy.wait_
 makes, polled every 10 ms instead of its 0.3 s) and a first /spawn call answered. Printed as
 median and p90 against upstream C++'s 0.32 s; the target is 0.45 s.
 
-Load: for N = 1, 10, 20, 50 prints the achieved pose rate per turtle (mean and worst),
-the tick jitter seen by a subscriber (std dev and p99 of the gap between poses,
-against the 16 ms tick) and the CPU% of one core used by the turtlesim process,
-with every pose subscribed and, for CPU, also with none subscribed (as the
-upstream figure was taken). Targets: 62.5 Hz within 1% at N = 50; at N = 20 no
-more than 2x the 7.4% of a core the upstream C++ turtlesim needs.
+Load: for N = 1, 20, 50 (or the N given), with every pose subscribed and with none, the CPU%
+of one core used by the turtlesim process, the median of ROUNDS runs; with the poses
+subscribed also the achieved pose rate per turtle (mean and worst) and the jitter a subscriber
+sees (std dev and p99 of the gap between poses, against the 16 ms tick). When the upstream
+C++ turtlesim_node is built beside it ($UPSTREAM_TURTLESIM, default
+/tmp/upstream_ws/devel/lib/turtlesim/turtlesim_node: ros_tutorials' turtlesim built by hand in
+a temporary catkin workspace, see docs/turtlesim_performance.md), every run of ours is paired
+with one of upstream's under the same load and the table gives the ratio ours / upstream.
+Target: <= 1.00x everywhere.
 
-    python3 bench/turtlesim_bench.py [N ...]         # start-up, then load for N turtles
-    python3 bench/turtlesim_bench.py --startup [RUNS]  # start-up only
+    python3 bench/turtlesim_bench.py [N ...]            # start-up, then load for N turtles
+    python3 bench/turtlesim_bench.py --load [N ...]     # load only
+    python3 bench/turtlesim_bench.py --startup [RUNS]   # start-up only
+    python3 bench/turtlesim_bench.py --one N SUB [ours|upstream]   # one run, as JSON
+
+ROUNDS (default 3) sets the runs per cell.
 """
 from __future__ import annotations
 
@@ -32,7 +39,8 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from rosenv import cpu_seconds, private_master  # noqa: E402
 
-UPSTREAM_CPU_20 = 7.4
+UPSTREAM_DEFAULT = "/tmp/upstream_ws/devel/lib/turtlesim/turtlesim_node"
+LOAD_COUNTS = (1, 20, 50)
 UPSTREAM_STARTUP_S = 0.32
 STARTUP_TARGET_S = 0.45
 STARTUP_RUNS = 12
@@ -42,7 +50,24 @@ WINDOW_S = 10.0
 WARMUP_S = 2.0
 
 
-def run(n: int, subscribe: bool) -> dict:
+def upstream_binary() -> str:
+    """The upstream C++ turtlesim_node built beside us, or "" when there is none."""
+    path = os.environ.get("UPSTREAM_TURTLESIM", UPSTREAM_DEFAULT)
+    return path if os.access(path, os.X_OK) else ""
+
+
+def sim_command(which: str, ros) -> tuple:
+    """(command, env) starting our turtlesim or upstream's; upstream finds its own turtle images
+    through the package path of the workspace it was built in."""
+    if which == "ours":
+        return ["rosrun", "turtlesim", "turtlesim_node"], None
+    binary = upstream_binary()
+    src = Path(binary).resolve().parents[3] / "src"
+    env = dict(ros.env, ROS_PACKAGE_PATH="%s:%s" % (src, ros.env.get("ROS_PACKAGE_PATH", "")))
+    return [binary], env
+
+
+def run(n: int, subscribe: bool, which: str = "ours") -> dict:
     import rospy
     from geometry_msgs.msg import Twist
 
@@ -51,7 +76,8 @@ def run(n: int, subscribe: bool) -> dict:
 
     with private_master() as ros:
         rospy.init_node("turtlesim_bench", anonymous=True, disable_signals=True)
-        sim = ros.start(["rosrun", "turtlesim", "turtlesim_node"], "turtlesim")
+        command, env = sim_command(which, ros)
+        sim = ros.start(command, "turtlesim", env=env)
         rospy.wait_for_service("/spawn", 30)
         names = ["turtle1"]
         spawn = rospy.ServiceProxy("/spawn", Spawn)
@@ -77,9 +103,10 @@ def run(n: int, subscribe: bool) -> dict:
             for pub in pubs:
                 pub.publish(twist)
             time.sleep(0.1)
-        cpu = 100.0 * (cpu_seconds(sim.proc.pid) - cpu_start) / (time.monotonic() - wall_start)
+        wall = time.monotonic() - wall_start
+        cpu = 100.0 * (cpu_seconds(sim.proc.pid) - cpu_start) / wall
         rospy.signal_shutdown("bench done")
-    result = {"n": n, "cpu": cpu}
+    result = {"n": n, "which": which, "cpu": cpu}
     if subscribe:
         rates, gaps = [], []
         for stamps in arrivals.values():
@@ -188,13 +215,49 @@ def in_subprocess(*args: str):
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
-def measure(n: int, subscribe: bool) -> dict:
-    return in_subprocess("--one", str(n), "1" if subscribe else "0")
+def measure(n: int, subscribe: bool, which: str = "ours") -> dict:
+    return in_subprocess("--one", str(n), "1" if subscribe else "0", which)
+
+
+def load_table(counts: list, rounds: int) -> None:
+    """CPU per (N, subscribed) for ours, paired run by run with upstream's when it is built."""
+    sims = ["ours"] + (["upstream"] if upstream_binary() else [])
+    print("turtlesim under load: N turtles moving and drawing, %.0f s window after %.0f s, median of %d runs, "
+          "CPU%% of one core (load average %.1f on %d cores)" % (WINDOW_S, WARMUP_S, rounds, os.getloadavg()[0],
+                                                                 os.cpu_count()))
+    if len(sims) == 1:
+        print("(no upstream turtlesim_node at %s: set UPSTREAM_TURTLESIM to compare)"
+              % os.environ.get("UPSTREAM_TURTLESIM", UPSTREAM_DEFAULT))
+    print("| N | poses | ours CPU% | upstream CPU% | ratio | ours rate Hz (worst) | ours jitter ms (p99 gap) |"
+          " upstream rate Hz (worst) | upstream jitter ms (p99 gap) |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    for n in counts:
+        for subscribe in (True, False):
+            runs = {which: [] for which in sims}
+            for _ in range(rounds):
+                for which in sims:
+                    runs[which].append(measure(n, subscribe, which))
+            cells = {}
+            for which in sims:
+                got = runs[which]
+                cpu = statistics.median(r["cpu"] for r in got)
+                timing = ("%.2f (%.2f)" % (statistics.median(r["rate_mean"] for r in got), min(r["rate_min"] for r in got))
+                          if subscribe else "-")
+                jitter = ("%.2f (%.1f)" % (statistics.median(r["jitter_ms"] for r in got),
+                                           max(r["p99_gap_ms"] for r in got)) if subscribe else "-")
+                cells[which] = (cpu, timing, jitter)
+            ours = cells["ours"]
+            up = cells.get("upstream")
+            print("| %d | %s | %.2f | %s | %s | %s | %s | %s | %s |" % (
+                n, "every pose subscribed" if subscribe else "unsubscribed", ours[0],
+                "%.2f" % up[0] if up else "-", "**%.2fx**" % (ours[0] / up[0]) if up and up[0] > 0 else "-",
+                ours[1], ours[2], up[1] if up else "-", up[2] if up else "-"))
+            sys.stdout.flush()
 
 
 def main() -> int:
     if sys.argv[1:2] == ["--one"]:
-        print(json.dumps(run(int(sys.argv[2]), sys.argv[3] == "1")))
+        print(json.dumps(run(int(sys.argv[2]), sys.argv[3] == "1", (sys.argv[4:5] or ["ours"])[0])))
         return 0
     if sys.argv[1:2] == ["--startup-runs"]:
         print(json.dumps(startup_runs(int(sys.argv[2]))))
@@ -202,21 +265,12 @@ def main() -> int:
     if sys.argv[1:2] == ["--startup"]:
         print_startup(in_subprocess("--startup-runs", (sys.argv[2:3] or [str(STARTUP_RUNS)])[0]))
         return 0
+    rounds = int(os.environ.get("ROUNDS", "3"))
+    if sys.argv[1:2] == ["--load"]:
+        load_table([int(a) for a in sys.argv[2:]] or list(LOAD_COUNTS), rounds)
+        return 0
     print_startup(in_subprocess("--startup-runs", str(STARTUP_RUNS)))
-    counts = [int(a) for a in sys.argv[1:]] or [1, 10, 20, 50]
-    print("turtlesim benchmark: N turtles moving and drawing, %.0f s window, 62.5 Hz target" % WINDOW_S)
-    print("%4s  %9s  %9s  %8s  %10s  %10s  %12s" % ("N", "rate Hz", "worst Hz", "rate %", "jitter ms",
-                                                     "p99 gap ms", "CPU% (subs)"))
-    for n in counts:
-        r = measure(n, subscribe=True)
-        print("%4d  %9.2f  %9.2f  %7.2f%%  %10.2f  %10.2f  %11.1f%%" % (
-            n, r["rate_mean"], r["rate_min"], 100 * r["rate_min"] / 62.5, r["jitter_ms"], r["p99_gap_ms"], r["cpu"]))
-        sys.stdout.flush()
-    print("CPU% of one core with nobody subscribed to the poses (as upstream was measured):")
-    for n in counts:
-        r = measure(n, subscribe=False)
-        ratio = " = %.2fx upstream C++ (%.1f%%)" % (r["cpu"] / UPSTREAM_CPU_20, UPSTREAM_CPU_20) if n == 20 else ""
-        print("%4d  %5.1f%%%s" % (n, r["cpu"], ratio))
+    load_table([int(a) for a in sys.argv[1:]] or list(LOAD_COUNTS), rounds)
     return 0
 
 

@@ -6,9 +6,10 @@ sensor reads only what was drawn; rendering composes paths and turtle icons.
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 from typing import Iterable, Sequence, Tuple
 
-from PyQt5.QtCore import QPointF, Qt
+from PyQt5.QtCore import QLineF, QPointF, Qt
 from PyQt5.QtGui import QColor, QImage, QPainter, QPen
 
 from turtlesim.constants import CANVAS_PX, DEFAULT_BACKGROUND_RGB, METER_PX, WORLD_SIZE
@@ -22,6 +23,12 @@ RGB = Tuple[int, int, int]
 def to_pixel(x: float, y: float) -> QPointF:
     """World metres (y up) to canvas pixels (y down)."""
     return QPointF(x * METER_PX, (WORLD_SIZE - y) * METER_PX)
+
+
+@lru_cache(maxsize=64)
+def qpen(pen: Pen) -> QPen:
+    """The Qt pen drawing with `pen` (made once per pen: the tick draws every turtle's path)."""
+    return QPen(QColor(pen.r, pen.g, pen.b), pen.width)
 
 
 class Canvas:
@@ -44,9 +51,10 @@ class Canvas:
                 continue
             if painter is None:
                 painter = QPainter(self.path)
-            painter.setPen(QPen(QColor(pen.r, pen.g, pen.b), pen.width))
-            for start, end in segments:
-                painter.drawLine(to_pixel(*start), to_pixel(*end))
+            painter.setPen(qpen(pen))
+            for (x0, y0), (x1, y1) in segments:  # to_pixel, inlined: this runs per turtle per tick
+                painter.drawLine(QLineF(x0 * METER_PX, (WORLD_SIZE - y0) * METER_PX,
+                                        x1 * METER_PX, (WORLD_SIZE - y1) * METER_PX))
         if painter is not None:
             painter.end()
 

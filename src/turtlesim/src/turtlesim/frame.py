@@ -25,7 +25,8 @@ class TurtleUpdate:
     name: str
     turtle: Turtle
     result: StepResult
-    colour: RGB
+    colour: Optional[RGB]
+    """What its colour sensor reads, or None when it was not read (nobody listens)."""
     error: Optional[Exception] = None
     """Why this turtle's step failed (it was stopped and left where it was), or None."""
 
@@ -93,8 +94,9 @@ class TurtleFrame:
         self.clear(background)
         return removed, first
 
-    def update(self, dt: float, now: float) -> List[TurtleUpdate]:
-        """Advance every turtle one tick, draw their paths, read their colour sensors.
+    def update(self, dt: float, now: float, sense: Callable[[str], bool] = lambda name: True) -> List[TurtleUpdate]:
+        """Advance every turtle one tick, draw their paths, read the colour sensors of the turtles
+        `sense` names (the node: those someone listens to).
 
         A turtle whose step fails is stopped where it was and the error reported in its update;
         the others move on.
@@ -102,18 +104,19 @@ class TurtleFrame:
         updates = [self._step(name, t, dt, now) for name, t in self.turtles.items()]
         self.canvas.draw((u.turtle.pen, u.result.segments) for u in updates)
         for u in updates:
-            u.colour = self.canvas.colour_at(u.turtle.x, u.turtle.y)
+            if sense(u.name):
+                u.colour = self.canvas.colour_at(u.turtle.x, u.turtle.y)
         return updates
 
     @staticmethod
     def _step(name: str, turtle: Turtle, dt: float, now: float) -> TurtleUpdate:
         before = (turtle.x, turtle.y, turtle.theta)
         try:
-            return TurtleUpdate(name, turtle, turtle.step(dt, now), (0, 0, 0))
+            return TurtleUpdate(name, turtle, turtle.step(dt, now), None)
         except Exception as err:  # noqa: BLE001  (a bug in one turtle must not stop the others)
             turtle.x, turtle.y, turtle.theta = before
             turtle.stop()
-            return TurtleUpdate(name, turtle, StepResult(), (0, 0, 0), err)
+            return TurtleUpdate(name, turtle, StepResult(), None, err)
 
     def render(self):
         return self.canvas.render(self.turtles.values())

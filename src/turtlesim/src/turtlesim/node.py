@@ -19,12 +19,16 @@ from std_srvs.srv import Empty, EmptyResponse, Trigger, TriggerResponse
 
 from turtlesim.canvas import RGB, Canvas, rgb888_bytes
 from turtlesim.constants import BACKGROUND_PARAMS, CENTRE, DEFAULT_BACKGROUND_RGB, TICK, WALL_WARNING
+from turtlesim.fanout import TickPublisher
 from turtlesim.frame import TurtleError, TurtleFrame, TurtleUpdate
 from turtlesim.msg import Color, Pose
 from turtlesim.srv import (Kill, KillResponse, SetPen, SetPenResponse, Spawn, SpawnResponse,
                            TeleportAbsolute, TeleportAbsoluteResponse, TeleportRelative,
                            TeleportRelativeResponse)
 from turtlesim.ticker import Ticker
+
+POSE_LAYOUT = "<5f"  # turtlesim/Pose on the wire: x, y, theta, linear_velocity, angular_velocity
+COLOR_LAYOUT = "<3B"  # turtlesim/Color: r, g, b
 
 
 def private_params() -> dict:
@@ -52,8 +56,9 @@ class TurtleInterface:
     def __init__(self, name: str, sim: "TurtlesimNode") -> None:
         self.name = name
         self._sim = sim
-        self.pose_pub = rospy.Publisher(name + "/pose", Pose, queue_size=1)
-        self.colour_pub = rospy.Publisher(name + "/color_sensor", Color, queue_size=1)
+        # Published every tick by the ticker itself: packed once, no thread per subscriber (fanout).
+        self.pose_pub = TickPublisher(name + "/pose", Pose, POSE_LAYOUT)
+        self.colour_pub = TickPublisher(name + "/color_sensor", Color, COLOR_LAYOUT)
         self.cmd_sub = rospy.Subscriber(name + "/cmd_vel", Twist, self._on_cmd_vel, queue_size=1)
         self.services = [
             rospy.Service(name + "/set_pen", SetPen, self._on_set_pen),
@@ -61,15 +66,17 @@ class TurtleInterface:
             rospy.Service(name + "/teleport_relative", TeleportRelative, self._on_teleport_relative),
         ]
 
+    def wants_colour(self) -> bool:
+        """Whether anyone listens to the colour sensor (nobody: the tick need not read it)."""
+        return self.colour_pub.has_subscribers()
+
     def publish(self, update: TurtleUpdate) -> None:
         t = update.turtle
         try:
-            self.pose_pub.publish(Pose(x=t.x, y=t.y, theta=t.theta,
-                                       linear_velocity=t.linear_velocity, angular_velocity=t.w))
-            self.colour_pub.publish(Color(*update.colour))
-        except rospy.ROSException:
-            pass  # killed between the tick and the publish
-        except Exception as err:  # noqa: BLE001  (e.g. a value genpy cannot pack: never stop the tick)
+            self.pose_pub.publish(t.x, t.y, t.theta, t.linear_velocity, t.w)
+            if update.colour is not None:
+                self.colour_pub.publish(*update.colour)
+        except Exception as err:  # noqa: BLE001  (e.g. a value that cannot be packed: never stop the tick)
             rospy.logerr_throttle(1.0, "%s: could not publish the pose: %r" % (self.name, err))
 
     def shutdown(self) -> None:
@@ -163,7 +170,7 @@ class TurtlesimNode:
     # -- the heartbeat --------------------------------------------------------------------
     def tick(self) -> None:
         with self.lock:
-            updates = self.frame.update(TICK, time.monotonic())
+            updates = self.frame.update(TICK, time.monotonic(), self._colour_wanted)
             targets = [(self.interfaces.get(u.name), u) for u in updates]
         for iface, update in targets:
             if update.error is not None:
@@ -172,6 +179,10 @@ class TurtlesimNode:
                 rospy.logwarn(WALL_WARNING % update.result.clamped_from)
             if iface is not None:
                 iface.publish(update)
+
+    def _colour_wanted(self, name: str) -> bool:
+        iface = self.interfaces.get(name)
+        return iface is not None and iface.wants_colour()
 
     @staticmethod
     def _on_tick_error(err: Exception) -> None:

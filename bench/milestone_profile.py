@@ -81,7 +81,7 @@ def snapshot(root: int) -> Dict[int, Tuple[str, float, int]]:
                     cmdline = [w.decode(errors="replace") for w in f.read().split(b"\0") if w]
             except OSError:
                 continue
-            found[child] = (kind_of(cmdline), procs[child][1], pid)
+            found[child] = (kind_of(cmdline) if cmdline else "", procs[child][1], pid)  # "": exited
             todo.append(child)
     return found
 
@@ -102,6 +102,7 @@ class Sampler(threading.Thread):
             now = time.monotonic() - self.started
             for pid, (kind, cpu, _) in snapshot(self.root).items():
                 row = self.seen.setdefault(pid, [kind, now, now, cpu])
+                row[0] = kind or row[0]  # the kind it has last (after an exec, what it became)
                 row[2], row[3] = now, cpu
             self.halt.wait(SAMPLE_S)
 

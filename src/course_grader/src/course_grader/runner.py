@@ -27,6 +27,7 @@ from course_grader import gradescope, submissions, verdict, workspace
 from course_grader.sandboxing import SandboxPlan
 from course_grader.submissions import Submission
 from course_grader.student_files import copy_logs
+from course_grader.typical_durations import TYPICAL_S
 from course_grader.verdict import Verdict
 
 MILESTONE_PACKAGE = "course_milestones"
@@ -87,7 +88,7 @@ class Grader:
         students = {p for m in self.milestones for p in m.packages}
         self._protected = workspace.course_packages() - students
         self._durations_path = os.path.join(options.out, WORK_DIR, "durations.json")
-        self._durations = _load_json(self._durations_path)
+        self._durations = dict(TYPICAL_S, **_load_json(self._durations_path))
         self._pool = ThreadPoolExecutor(max(1, options.jobs), thread_name_prefix="grade")
         self._setup = workspace.course_setup()
         self.sandbox = SandboxPlan(options.out, workspace.course_root(self._setup), options.sources)

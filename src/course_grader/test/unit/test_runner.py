@@ -72,3 +72,26 @@ def test_autograder_files_without_git_follow_the_gitignore(tmp_path):
         (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)
         (tmp_path / rel).write_text("x")
     assert repo_files(str(tmp_path)) == [".gitignore", "setup.sh", "src/pkg/a.py"]
+
+
+def test_every_milestone_has_a_typical_duration():
+    from course_milestones.registry import MILESTONES
+    from course_grader.typical_durations import TYPICAL_S
+    assert sorted(TYPICAL_S) == sorted(m.name for m in MILESTONES)
+
+
+def test_a_first_grading_into_a_fresh_out_starts_the_longest_runs_first(tmp_path, monkeypatch):
+    """Without a _work/durations.json the order comes from the typical durations."""
+    from course_grader.typical_durations import TYPICAL_S
+    started = []
+
+    def recording_rostest(pkg, test_file, **kwargs):
+        started.append(test_file)
+        return _fake_rostest(pkg, test_file, **kwargs)
+    monkeypatch.setattr(runner, "run_rostest", recording_rostest)
+    monkeypatch.setenv("COURSE_SANDBOX_LEVEL", "none")
+    monkeypatch.setattr(workspace, "course_setup", lambda: "/nowhere/setup.bash")
+    assert TYPICAL_S["checkpoint1"] > TYPICAL_S["chatter"]
+    grader = runner.Grader([CHATTER, CP1], runner.Options(str(tmp_path / "out"), jobs=1), say=lambda line: None)
+    grader.grade([Submission(runner.REFERENCE, "")], reference=True)
+    assert started == ["checkpoint1.test", "chatter.test"]

@@ -32,9 +32,10 @@ KEEPER_EXIT_S = 5.0
 PROCESS_SHARE_NOTED = 0.9
 # Variables of the trusted side a student process never gets.
 TRUSTED_VARS = ("COURSE_ARTIFACTS_DIR", "COURSE_SANDBOX_POLICY", "COURSE_WS_SETUP")
-# Variables of the run (its master, its token, output flushed line by line) the student's processes do get.
+# Variables of the run (its master, its token, output flushed line by line, the quicker distutils
+# for a student's roslaunch) the student's processes do get.
 RUN_VARS = ("ROS_MASTER_URI", "ROS_HOSTNAME", "ROS_IP", "COURSE_RUN_TOKEN", "PYTHONUNBUFFERED", "LD_PRELOAD",
-            "_STDBUF_O", "QT_QPA_PLATFORM")
+            "_STDBUF_O", "QT_QPA_PLATFORM", "SETUPTOOLS_USE_DISTUTILS")
 CAPTURE_BYTES = 1024 * 1024
 # The environment the trusted process (a check) started with: what it sets later is on purpose.
 _STARTING_ENV = dict(os.environ)

@@ -18,6 +18,7 @@ import time
 from typing import IO, List, NamedTuple, Optional, Sequence, Tuple
 
 from course_testkit import isolation, junit
+from course_testkit.core_params import etc_dir_for_run
 
 DEFAULT_TIMEOUT_S = 300.0
 # What we keep of rostest's combined output: its start and its end.
@@ -85,13 +86,20 @@ def _pump(stream: IO[bytes], sink: CappedText) -> None:
 
 
 def rostest_env(base: Optional[dict], results_dir: str, token: str) -> dict:
-    """The environment of one run: own ROS_HOME/ROS_LOG_DIR, loopback, no display, unbuffered."""
+    """The environment of one run: own ROS_HOME/ROS_LOG_DIR, loopback, no display, unbuffered,
+    and two start-up costs cut: roscore.xml's rosversion commands answered from a file
+    (core_params), and Python's own distutils instead of the copy setuptools' import hook
+    loads (roslaunch, rostest and rosclean import distutils: 0.30 s -> 0.17 s per roslaunch)."""
     env = dict(os.environ if base is None else base)
     env.pop("DISPLAY", None)
     env.pop("ROS_MASTER_URI", None)
     env.pop("ROS_IP", None)
     env.update(ROS_HOME=os.path.join(results_dir, "ros_home"), ROS_LOG_DIR=os.path.join(results_dir, "log"),
                ROS_HOSTNAME="localhost", QT_QPA_PLATFORM="offscreen", PYTHONUNBUFFERED="1")
+    env.setdefault("SETUPTOOLS_USE_DISTUTILS", "stdlib")
+    etc = etc_dir_for_run(env, os.path.join(results_dir, "etc_ros"))
+    if etc is not None:
+        env["ROS_ETC_DIR"] = etc
     return isolation.token_env(env, token)
 
 

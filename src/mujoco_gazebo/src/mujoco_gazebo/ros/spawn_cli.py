@@ -122,8 +122,10 @@ def load_xml(args: SpawnArgs, get_param=None, stdin=None) -> str:
 
 def main(argv: Optional[List[str]] = None) -> int:
     import rospy
+    from course_rospy import quick_exit
 
     argv = rospy.myargv(sys.argv if argv is None else argv)[1:]
+    quick_exit.install()  # rospy's exit without a spinning core
     rospy.init_node("spawn_model", anonymous=True)
     try:
         args = parse_args(argv)

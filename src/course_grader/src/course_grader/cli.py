@@ -26,8 +26,41 @@ from course_grader.runner import REFERENCE, Grader, Options
 
 # Three milestone runs per core: most of a run is waiting on behaviour the text fixes (a drawing,
 # a robot driving, a time-out), which other runs' CPU work fills. Reference, 18 milestones on 2
-# cores: --jobs 3 45-47 s, --jobs 6 32-33 s (docs/grading.md "Where a grading's time goes").
-DEFAULT_JOBS = 3 * len(os.sched_getaffinity(0))
+# cores: --jobs 3 45-47 s, --jobs 6 26 s (docs/grading.md "Where a grading's time goes").
+RUNS_PER_CORE = 3
+# Memory a run may take: its processes' RSS summed peaked at 373 MiB (turtlebot, MuJoCo), 286 MiB
+# (launch_params); a small container (Gradescope's default) gets fewer runs at once.
+MIB_PER_RUN = 400
+
+
+def available_mib(meminfo: str = "/proc/meminfo", cgroup: str = "/sys/fs/cgroup") -> float:
+    """Memory this process may still use: MemAvailable, or less under a cgroup v2 limit."""
+    available = float("inf")
+    try:
+        with open(meminfo) as f:
+            for line in f:
+                if line.startswith("MemAvailable:"):
+                    available = int(line.split()[1]) / 1024
+    except (OSError, ValueError):
+        pass
+    try:
+        with open(os.path.join(cgroup, "memory.max")) as f:
+            limit = f.read().strip()
+        with open(os.path.join(cgroup, "memory.current")) as f:
+            used = int(f.read().strip())
+        if limit != "max":
+            available = min(available, (int(limit) - used) / 2 ** 20)
+    except (OSError, ValueError):
+        pass
+    return available
+
+
+def default_jobs(cores: int, memory_mib: float) -> int:
+    """RUNS_PER_CORE runs per core, as many as the memory holds, at least one."""
+    return max(1, min(RUNS_PER_CORE * cores, int(memory_mib // MIB_PER_RUN)))
+
+
+DEFAULT_JOBS = default_jobs(len(os.sched_getaffinity(0)), available_mib())
 
 
 def parse(argv: Optional[List[str]]) -> argparse.Namespace:

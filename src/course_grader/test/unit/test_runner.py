@@ -95,3 +95,15 @@ def test_a_first_grading_into_a_fresh_out_starts_the_longest_runs_first(tmp_path
     grader = runner.Grader([CHATTER, CP1], runner.Options(str(tmp_path / "out"), jobs=1), say=lambda line: None)
     grader.grade([Submission(runner.REFERENCE, "")], reference=True)
     assert started == ["checkpoint1.test", "chatter.test"]
+
+
+def test_default_jobs_are_three_per_core_within_the_memory(tmp_path):
+    from course_grader.cli import available_mib, default_jobs
+    assert default_jobs(2, 24 * 1024) == 6
+    assert default_jobs(1, 768) == 1 and default_jobs(4, 1200) == 3 and default_jobs(2, 0) == 1
+    (tmp_path / "meminfo").write_text("MemTotal: 8000000 kB\nMemAvailable:    4096000 kB\n")
+    (tmp_path / "cg").mkdir()
+    assert available_mib(str(tmp_path / "meminfo"), str(tmp_path / "cg")) == 4000
+    (tmp_path / "cg" / "memory.max").write_text("1073741824\n")
+    (tmp_path / "cg" / "memory.current").write_text("%d\n" % (200 * 2 ** 20))
+    assert available_mib(str(tmp_path / "meminfo"), str(tmp_path / "cg")) == 824

@@ -43,7 +43,7 @@ def needs_isolation(sample: Path) -> bool:
 # would spend this user's process limit under every other run, the test's own included.
 ISOLATION = levels.detect(DEFAULT_USER)
 SAMPLES = [s for s in ALL_SAMPLES if not (ISOLATION == levels.NONE and needs_isolation(s))]
-JOBS = 3  # the grader's default: 20 reference gradings at 3 gave 0 wrong verdicts (bench/grade_bench.py)
+JOBS = 3  # 20 reference gradings at 3 gave 0 wrong verdicts, and at the default 6 (bench/grade_bench.py)
 GRADER_TIMEOUT_S = 3600
 STOP_TIMEOUT_S = 30.0
 MESSAGE_CHARS = 2500

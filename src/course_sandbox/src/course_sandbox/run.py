@@ -30,6 +30,10 @@ START_TIMEOUT_S = 10.0
 KEEPER_EXIT_S = 5.0
 # The watcher samples: this share of the process limit counts as having reached it.
 PROCESS_SHARE_NOTED = 0.9
+# The limit is the sandbox user's, shared by the runs at once: a run holding more than this share
+# while the user is at the limit is one exhausting it (several fork bombs at once share it; a
+# milestone's nodes hold tens of threads, a simulator and a launch file a few hundred at most).
+PROCESS_SHARE_HOG = 0.25
 # Variables of the trusted side a student process never gets.
 TRUSTED_VARS = ("COURSE_ARTIFACTS_DIR", "COURSE_SANDBOX_POLICY", "COURSE_WS_SETUP")
 # Variables of the run (its master, its token, output flushed line by line, the quicker distutils
@@ -91,10 +95,13 @@ class LimitHits:
 
 
 def judge_usage(policy: Policy, usages: Sequence[procs.Usage], hits: LimitHits,
-                shared_memory: Callable[[], int] = lambda: 0) -> bool:
+                shared_memory: Callable[[], int] = lambda: 0, user_tasks: Callable[[], int] = lambda: 0) -> bool:
     """Note the limits `usages` (one sample of the sandbox's processes) reach; True when the run's
     processes must end (memory, processes). Resident sizes count a page shared by forks once per fork, so past the
-    limit `shared_memory()` (the proportional total, slower to read) decides."""
+    limit `shared_memory()` (the proportional total, slower to read) decides. The process limit is
+    the sandbox user's, across the runs at once: a run holding over PROCESS_SHARE_HOG of it while
+    `user_tasks()` (the user's total, read only then) is at the limit has reached it too, and must
+    end before the other runs' nodes cannot start a thread."""
     limits = policy.limits
     tasks = sum(u.tasks for u in usages)
     rss = sum(u.rss_bytes for u in usages)
@@ -102,7 +109,8 @@ def judge_usage(policy: Policy, usages: Sequence[procs.Usage], hits: LimitHits,
         rss = min(rss, shared_memory())
     hits.sample(tasks, rss)
     end = False
-    if tasks >= limits.processes * PROCESS_SHARE_NOTED:
+    if tasks >= limits.processes * PROCESS_SHARE_NOTED or (
+            tasks >= limits.processes * PROCESS_SHARE_HOG and user_tasks() >= limits.processes * PROCESS_SHARE_NOTED):
         # A fork bomb at its limit retries fork() in every process: it would starve the other
         # runs of CPU, so its run ends here.
         hits.note("processes", "your code reached the process limit (%d processes and threads); "
@@ -236,8 +244,10 @@ class RunSandbox:
         """One look at the sandbox's processes (see judge_usage): True when they must end."""
         pids = self.processes()
         usages = [u for u in (procs.usage(pid) for pid in pids) if u is not None]
+        owners = {procs.owner(pid) for pid in pids} - {None}
         return bool(usages) and judge_usage(self.policy, usages, self.hits,
-                                            lambda: sum(procs.proportional_bytes(pid) or 0 for pid in pids))
+                                            lambda: sum(procs.proportional_bytes(pid) or 0 for pid in pids),
+                                            lambda: max((procs.user_tasks(uid) for uid in owners), default=0))
 
     def end_processes(self, rounds: int = 20) -> None:
         """Kill every process in the sandbox now (the keeper stays: later starts still work).

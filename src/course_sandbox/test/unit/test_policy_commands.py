@@ -105,6 +105,13 @@ def test_limits_are_noted_and_the_run_ended_past_memory_or_processes():
     hits = LimitHits()
     assert not judge_usage(policy, [Usage(10, 100, 1.0)], hits) and not hits.hits
     assert judge_usage(policy, [Usage(95, 100, 1.0)], hits) and "process limit" in hits.hits["processes"]
+    # The limit is the user's, shared with the runs at once: a run holding most of it while the
+    # user is at the limit is ended; one holding little is not, whatever the user's total.
+    hits = LimitHits()
+    assert not judge_usage(policy, [Usage(20, 100, 1.0)], hits, user_tasks=lambda: 99) and not hits.hits
+    assert not judge_usage(policy, [Usage(40, 100, 1.0)], hits, user_tasks=lambda: 70) and not hits.hits
+    assert judge_usage(policy, [Usage(40, 100, 1.0)], hits, user_tasks=lambda: 95)
+    assert "process limit" in hits.hits["processes"]
     hits = LimitHits()
     assert not judge_usage(policy, [Usage(1, 5000, 1.0)] * 2, hits, shared_memory=lambda: 900)
     assert judge_usage(policy, [Usage(1, 5000, 1.0)] * 2, hits, shared_memory=lambda: 1500)

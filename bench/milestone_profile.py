@@ -26,8 +26,9 @@ from collections import defaultdict
 from pathlib import Path
 from typing import Dict, List, Tuple
 
+from course_sandbox import procs
+
 SAMPLE_S = 0.02
-TICKS = os.sysconf("SC_CLK_TCK")
 
 
 def kind_of(cmdline: List[str]) -> str:
@@ -57,32 +58,18 @@ def kind_of(cmdline: List[str]) -> str:
     return "other: %s" % (script or name)
 
 
-def snapshot(root: int) -> Dict[int, Tuple[str, float, int]]:
-    """Every process under `root`: pid -> (kind, CPU seconds so far, parent)."""
-    procs: Dict[int, Tuple[int, float]] = {}
-    for entry in os.listdir("/proc"):
-        if not entry.isdigit():
-            continue
+def snapshot(root: int) -> Dict[int, Tuple[str, float]]:
+    """Every process under `root`: pid -> (kind, CPU seconds so far); kind "" once it has exited."""
+    found = {}
+    for pid in procs.descendants(root):
+        use = procs.usage(pid)
         try:
-            with open("/proc/%s/stat" % entry) as f:
-                fields = f.read().rsplit(")", 1)[1].split()
+            with open("/proc/%d/cmdline" % pid, "rb") as f:
+                cmdline = [w.decode(errors="replace") for w in f.read().split(b"\0") if w]
         except OSError:
             continue
-        procs[int(entry)] = (int(fields[1]), (int(fields[11]) + int(fields[12])) / TICKS)
-    children = defaultdict(list)
-    for pid, (ppid, _) in procs.items():
-        children[ppid].append(pid)
-    found, todo = {}, [root]
-    while todo:
-        pid = todo.pop()
-        for child in children.get(pid, ()):
-            try:
-                with open("/proc/%d/cmdline" % child, "rb") as f:
-                    cmdline = [w.decode(errors="replace") for w in f.read().split(b"\0") if w]
-            except OSError:
-                continue
-            found[child] = (kind_of(cmdline) if cmdline else "", procs[child][1], pid)  # "": exited
-            todo.append(child)
+        if use is not None:
+            found[pid] = (kind_of(cmdline) if cmdline else "", use.cpu_seconds)
     return found
 
 
@@ -100,7 +87,7 @@ class Sampler(threading.Thread):
     def run(self) -> None:
         while not self.halt.is_set():
             now = time.monotonic() - self.started
-            for pid, (kind, cpu, _) in snapshot(self.root).items():
+            for pid, (kind, cpu) in snapshot(self.root).items():
                 row = self.seen.setdefault(pid, [kind, now, now, cpu])
                 row[0] = kind or row[0]  # the kind it has last (after an exec, what it became)
                 row[2], row[3] = now, cpu

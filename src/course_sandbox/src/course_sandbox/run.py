@@ -244,10 +244,10 @@ class RunSandbox:
         """One look at the sandbox's processes (see judge_usage): True when they must end."""
         pids = self.processes()
         usages = [u for u in (procs.usage(pid) for pid in pids) if u is not None]
-        owners = {procs.owner(pid) for pid in pids} - {None}
         return bool(usages) and judge_usage(self.policy, usages, self.hits,
                                             lambda: sum(procs.proportional_bytes(pid) or 0 for pid in pids),
-                                            lambda: max((procs.user_tasks(uid) for uid in owners), default=0))
+                                            lambda: max((procs.user_tasks(uid) for uid in
+                                                         {procs.owner(pid) for pid in pids} - {None}), default=0))
 
     def end_processes(self, rounds: int = 20) -> None:
         """Kill every process in the sandbox now (the keeper stays: later starts still work).

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from course_sandbox import levels, run
+from course_sandbox import levels, pids_cgroup, run
 from course_sandbox.policy import DEFAULT_USER, Limits, Policy
 from course_sandbox.run import RunSandbox, capture_oneshot
 from course_testkit.waiting import wait_for
@@ -192,3 +192,70 @@ def test_a_build_sandbox_writes_only_its_workspace(place):
                                           % (home, course, out)], str(home), dict(os.environ))
     assert code == 0 and b"done" in text and b"bob" not in text
     assert (home / "built").exists() and not (course / "evil").exists()
+
+
+# Forks until refused, keeps what it made, says how many, then holds them.
+HOLDING_BOMB = ("import os, time\nn = 0\nwhile True:\n    try:\n        if os.fork() == 0:\n"
+                "            time.sleep(60)\n            os._exit(0)\n        n += 1\n    except OSError:\n"
+                "        break\nprint('refused after', n, flush=True)\ntime.sleep(60)\n")
+THREADS = ("import threading, time\nn = 0\nfor _ in range(48):\n    try:\n"
+           "        threading.Thread(target=time.sleep, args=(30,), daemon=True).start()\n        n += 1\n"
+           "    except RuntimeError:\n        break\nprint('threads', n, flush=True)\n")
+
+
+def _start(box, script):
+    argv, env, cwd = box.prepare(["python3", "-u", "-c", script])
+    return subprocess.Popen(argv, env=env, cwd=cwd, stdout=subprocess.PIPE, start_new_session=True)
+
+
+@pytest.mark.parametrize("level", [LEVEL] + ([levels.USER] if ROOT and pids_cgroup.available() else []))
+def test_fork_bombs_in_runs_at_once_each_meet_their_own_limit_only(place, monkeypatch, level):
+    """Two runs' fork bombs at their limits at once, and a third run still starts its threads:
+    a run's process limit is its own (its user namespace, or its pids cgroup where no namespace
+    gives one: at isolation `user only`, RLIMIT_NPROC alone would be the sandbox user's, shared)."""
+    monkeypatch.setattr(run, "WATCH_INTERVAL_S", 3600.0)  # the bombs hold their processes until closed
+    out, home, course = place
+    boxes = [RunSandbox(Policy(level, DEFAULT_USER, [str(home)], [str(out)], [str(course)], str(home),
+                               limits=Limits(processes=64), report=str(out / ("sandbox%d.json" % i))))
+             for i in range(3)]
+    try:
+        bombs = [_start(box, HOLDING_BOMB) for box in boxes[:2]]
+        for bomb in bombs:
+            made = bomb.stdout.readline().split()
+            assert made[:2] == [b"refused", b"after"] and int(made[2]) < 64, made
+        threads = _start(boxes[2], THREADS)
+        assert threads.stdout.readline().split() == [b"threads", b"48"], "the third run's limit is its own"
+        threads.wait(20)
+    finally:
+        for box in boxes:
+            box.close()
+    for i in range(2):
+        assert "process limit" in (out / ("sandbox%d.json" % i)).read_text()
+    assert "process limit" not in (out / "sandbox2.json").read_text()
+    for bomb in bombs:
+        assert bomb.wait(10) is not None
+
+
+@pytest.mark.skipif(not (ROOT and pids_cgroup.available()), reason="no pids cgroup on this machine")
+def test_a_refused_fork_is_noted_however_few_processes_remain(place, monkeypatch):
+    """The kernel counts a run's refused forks: a run that reached its limit is noted even when
+    no sample ever sees it near the limit (forks under way are not in /proc, a sample under a
+    fork bomb lags). Here the bomb ends its own forks before the only look, at close."""
+    monkeypatch.setattr(run, "WATCH_INTERVAL_S", 3600.0)
+    out, home, course = place
+    report = out / "sandbox.json"
+    box = RunSandbox(Policy(LEVEL, DEFAULT_USER, [str(home)], [str(out)], [str(course)], str(home),
+                            limits=Limits(processes=32), report=str(report)))
+    try:
+        proc = _start(box, "import os, signal\nkids = []\nwhile True:\n    try:\n        pid = os.fork()\n"
+                           "    except OSError:\n        break\n    if pid == 0:\n        signal.pause()\n"
+                           "    kids.append(pid)\nfor pid in kids:\n    os.kill(pid, 9)\n    os.waitpid(pid, 0)\n"
+                           "print('alone again', flush=True)\nsignal.pause()\n")
+        assert proc.stdout.readline() == b"alone again\n"
+        assert box.counts_processes
+        assert len(box.processes()) <= 3, "the forks are gone: nothing near the limit to see"
+        cgroup = box._cgroup.path
+    finally:
+        box.close()
+    assert "process limit" in report.read_text()
+    assert not os.path.exists(cgroup), "the run's cgroup goes with it"

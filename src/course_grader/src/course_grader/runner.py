@@ -232,15 +232,17 @@ class Grader:
                                  timeout=self.options.timeout)
             with open(os.path.join(artifacts, "rostest.txt"), "w") as f:
                 f.write(result.output)
-            reason = "" if result.passed else result.summary()
+            hits = verdict.sandbox_hits(report)
+            passed = result.passed and not verdict.ended_by_limit(hits)
+            reason = "" if passed else verdict.ENDED_BY_LIMIT if result.passed else result.summary()
             if not result.passed:
                 hints = hints + verdict.output_capped(artifacts)
                 reason = "\n".join([reason] + [h for h in hints if h not in reason])
             copy_logs(os.path.join(home, "log"), os.path.join(artifacts, "ros_log"))
             verdict.trim_files(artifacts)
             verdict.trim_files(run_dir, skip=home)  # the student's home is theirs: never written by us
-            self._record(Verdict(sub.name, m, result.passed, reason, verdict.log_tails(artifacts),
-                                 result.elapsed, artifacts, verdict.sandbox_notes(report)))
+            self._record(Verdict(sub.name, m, passed, reason, verdict.log_tails(artifacts),
+                                 result.elapsed, artifacts, verdict.sandbox_notes(hits)))
         except Exception:  # noqa: BLE001
             self._record(Verdict(sub.name, m, False, "the grader failed on this milestone:\n%s"
                                  % traceback.format_exc(limit=5)))

@@ -13,9 +13,9 @@ import os
 import pwd
 from typing import Dict, Optional, Sequence
 
-from course_sandbox import access, levels
+from course_sandbox import access, levels, pids_cgroup
 from course_testkit import isolation
-from course_sandbox.policy import DEFAULT_USER, Policy, grading_gid, normalised
+from course_sandbox.policy import DEFAULT_USER, Limits, Policy, grading_gid, normalised
 from course_sandbox.run import end_user_processes
 
 SANDBOX_USER_VAR = "COURSE_SANDBOX_USER"
@@ -56,10 +56,12 @@ class SandboxPlan:
                     % (self.user, what, path, blocked, os.stat(blocked).st_mode & 0o7777, blocked))
 
     def describe(self) -> str:
-        """The isolation in force, in words: the sandbox's level and the runs' network."""
+        """The isolation in force, in words: the sandbox's level, how a run's processes are
+        counted, and the runs' network."""
         network = ("each run has its own loopback-only network" if isolation.network_namespace_works()
                    else "the runs share the machine's network (network namespaces refused)")
-        return "%s; %s" % (levels.describe(self.level, self.user), network)
+        processes = pids_cgroup.describe(pids_cgroup.available(), Limits().processes)
+        return "%s; %s; %s" % (levels.describe(self.level, self.user), processes, network)
 
     def end_leftovers(self) -> None:
         """Once every run is over: without PID namespaces (`user only`) a student's helper that

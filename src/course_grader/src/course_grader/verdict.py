@@ -15,7 +15,7 @@ import json
 import os
 import re
 import stat
-from typing import Iterable, List, NamedTuple, Optional, Sequence
+from typing import Dict, Iterable, List, NamedTuple, Optional, Sequence
 
 from course_milestones.milestone import Milestone
 from course_testkit.isolation import MAX_FILE_BYTES
@@ -151,12 +151,29 @@ def trim_files(folder: str, keep: int = KEEP_BYTES, skip: str = "") -> None:
                 f.truncate()
 
 
-def sandbox_notes(report_path: str) -> str:
-    """The limits the student's code hit in a run, in words, from the sandbox's report (written
-    by the trusted check, never by student code); "" when none or no report."""
+# The limits at which the sandbox's watcher ends a run's processes. A run whose code reached one
+# fails whatever its check saw before: otherwise the verdict of a fork bomb beside a correct node
+# would hang on which came first, the check or the limit.
+ENDING_LIMITS = ("memory", "processes")
+ENDED_BY_LIMIT = ("the checks passed, but your code reached a sandbox limit and all its processes were "
+                  "ended (a solution must stay within the limits: see the sandbox note below)")
+
+
+def sandbox_hits(report_path: str) -> Dict[str, str]:
+    """The limits the student's code hit in a run, each with its sentence, from the sandbox's
+    report (written by the trusted check, never by student code); empty when none or no report."""
     try:
         with open(report_path) as f:
             hits = json.load(f).get("hits", {})
     except (OSError, ValueError, AttributeError):
-        return ""
-    return "\n".join("sandbox limit: %s" % sentence for _, sentence in sorted(hits.items()) if isinstance(sentence, str))
+        return {}
+    return {str(k): v for k, v in hits.items() if isinstance(v, str)} if isinstance(hits, dict) else {}
+
+
+def sandbox_notes(hits: Dict[str, str]) -> str:
+    """The hits in words ("" when none)."""
+    return "\n".join("sandbox limit: %s" % sentence for _, sentence in sorted(hits.items()))
+
+
+def ended_by_limit(hits: Dict[str, str]) -> bool:
+    return any(limit in hits for limit in ENDING_LIMITS)

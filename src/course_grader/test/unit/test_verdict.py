@@ -1,4 +1,5 @@
 """Which milestones a submission is graded on, and verdicts in words."""
+import json
 import os
 
 from course_milestones.milestone import Milestone
@@ -66,3 +67,17 @@ def test_log_tails_drop_terminal_control_sequences(tmp_path):
 def test_longest_first_puts_unknown_then_slow_milestones_first():
     from course_grader.runner import longest_first
     assert longest_first(ALL, {"chatter": 4.0, "checkpoint1": 7.5}) == [GRAPH, CP1, CHATTER]
+
+
+def test_a_run_ended_at_a_sandbox_limit_fails_whatever_its_check_saw(tmp_path):
+    report = tmp_path / "sandbox.json"
+    report.write_text(json.dumps({"hits": {"processes": "your code reached the process limit", "cpu": "a process"}}))
+    hits = verdict.sandbox_hits(str(report))
+    assert verdict.ended_by_limit(hits)
+    assert verdict.sandbox_notes(hits).splitlines() == ["sandbox limit: a process",
+                                                        "sandbox limit: your code reached the process limit"]
+    assert not verdict.ended_by_limit({"cpu": "a process of yours used its 300 s"}), "a CPU note does not end a run"
+    for text in ("", "[1]", '{"hits": [1]}', '{"hits": {"memory": 3}}'):
+        report.write_text(text)
+        assert verdict.sandbox_hits(str(report)) == {}, text
+    assert verdict.sandbox_hits(str(tmp_path / "none.json")) == {}

@@ -55,14 +55,16 @@ def user_prefix(policy: Policy) -> List[str]:
     return prefix + ["--"]
 
 
-def limits_prefix(limits: Limits, level: str) -> List[str]:
+def limits_prefix(limits: Limits, level: str, counted: bool = False) -> List[str]:
     """prlimit for one process. RLIMIT_NPROC counts per user *namespace* (Linux >= 5.14), so inside
     the sandbox it bounds this sandbox alone; without namespaces it would count the grader's own
-    processes too, so it is set only where the user is the sandbox user."""
+    processes too, so it is set only where the user is the sandbox user. `counted`: a pids
+    cgroup of the run's own is the process limit (course_sandbox.pids_cgroup), and no RLIMIT_NPROC
+    is set (without namespaces it would be the sandbox user's, shared by every run at once)."""
     args = ["prlimit", "--as=%d" % limits.address_space_bytes,
             "--cpu=%d:%d" % (limits.cpu_seconds, limits.cpu_seconds + 5),
             "--fsize=%d" % limits.file_bytes, "--core=0"]
-    if level != levels.NONE:
+    if level != levels.NONE and not counted:
         args.append("--nproc=%d" % limits.processes)
     return args + ["--"]
 
@@ -122,10 +124,11 @@ def keeper_command(policy: Policy, can_traverse: Callable[[str], bool]) -> List[
             + ["--as-pid-1", "--", KEEPER_PYTHON, "-I", "-S", "-c", KEEPER_INIT])
 
 
-def enter_command(policy: Policy, init_pid: int, command: Sequence[str], cwd: str) -> List[str]:
+def enter_command(policy: Policy, init_pid: int, command: Sequence[str], cwd: str,
+                  counted: bool = False) -> List[str]:
     """`command` as a process of the run's sandbox, whose namespace init is `init_pid`. Without
-    namespaces: as the sandbox user (if any) with the limits."""
-    inner = RESTORE_STOP_SIGNALS + limits_prefix(policy.limits, policy.level) + list(command)
+    namespaces: as the sandbox user (if any) with the limits. `counted`: see limits_prefix."""
+    inner = RESTORE_STOP_SIGNALS + limits_prefix(policy.limits, policy.level, counted) + list(command)
     if not levels.uses_namespaces(policy.level):
         return user_prefix(policy) + inner
     return (user_prefix(policy) + IGNORE_STOP_SIGNALS
@@ -134,9 +137,10 @@ def enter_command(policy: Policy, init_pid: int, command: Sequence[str], cwd: st
 
 
 def oneshot_command(policy: Policy, command: Sequence[str], cwd: str,
-                    can_traverse: Callable[[str], bool]) -> List[str]:
-    """`command` in a sandbox of its own (a build): it ends when the command ends."""
-    inner = limits_prefix(policy.limits, policy.level) + list(command)
+                    can_traverse: Callable[[str], bool], counted: bool = False) -> List[str]:
+    """`command` in a sandbox of its own (a build): it ends when the command ends. `counted`: see
+    limits_prefix."""
+    inner = limits_prefix(policy.limits, policy.level, counted) + list(command)
     if not levels.uses_namespaces(policy.level):
         return user_prefix(policy) + inner
     return (user_prefix(policy) + ["bwrap"] + namespace_args() + view_args(policy, can_traverse)

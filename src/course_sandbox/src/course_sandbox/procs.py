@@ -111,17 +111,6 @@ def usage(pid: int) -> Optional[Usage]:
     return Usage(int(fields[17]), rss_pages * PAGE, (int(fields[11]) + int(fields[12])) / TICKS)
 
 
-def user_tasks(uid: int) -> int:
-    """Processes and threads of every process whose real user is `uid`: what the kernel holds
-    against that user's RLIMIT_NPROC, whichever run (or user namespace) they belong to."""
-    total = 0
-    for pid in pids():
-        if owner(pid) == uid:
-            found = usage(pid)
-            total += found.tasks if found is not None else 0
-    return total
-
-
 def proportional_bytes(pid: int) -> Optional[int]:
     """The process's proportional set size (its share of each page it maps): forks that share
     their parent's pages are not counted once each, as their resident sizes would be."""

@@ -11,6 +11,7 @@ run_oneshot (used by the grader's build): a command in a sandbox of its own, to 
 """
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import pwd
@@ -19,21 +20,18 @@ import signal
 import subprocess
 import threading
 import time
-from typing import Callable, Dict, List, Optional, Sequence, Set, Tuple
+from typing import Callable, Dict, Iterator, List, NamedTuple, Optional, Sequence, Set, Tuple
 
 from course_sandbox import commands, levels, procs
+from course_sandbox.pids_cgroup import PidsCgroup
 from course_sandbox.access import identity, traverser
 from course_sandbox.policy import Policy
 
 WATCH_INTERVAL_S = 0.5
 START_TIMEOUT_S = 10.0
 KEEPER_EXIT_S = 5.0
-# The watcher samples: this share of the process limit counts as having reached it.
+# Without a pids cgroup the watcher samples: this share of the process limit counts as having reached it.
 PROCESS_SHARE_NOTED = 0.9
-# The limit is the sandbox user's, shared by the runs at once: a run holding more than this share
-# while the user is at the limit is one exhausting it (several fork bombs at once share it; a
-# milestone's nodes hold tens of threads, a simulator and a launch file a few hundred at most).
-PROCESS_SHARE_HOG = 0.25
 # Variables of the trusted side a student process never gets.
 TRUSTED_VARS = ("COURSE_ARTIFACTS_DIR", "COURSE_SANDBOX_POLICY", "COURSE_WS_SETUP")
 # Variables of the run (its master, its token, output flushed line by line, the quicker distutils
@@ -94,23 +92,32 @@ class LimitHits:
             return {"hits": dict(self.hits), "peak_tasks": self.peak_tasks, "peak_rss_bytes": self.peak_rss}
 
 
+class Counted(NamedTuple):
+    """What the run's pids cgroup says: its tasks now (forks under way included) and how many
+    forks or thread starts its limit refused."""
+
+    tasks: int
+    refusals: int
+
+
 def judge_usage(policy: Policy, usages: Sequence[procs.Usage], hits: LimitHits,
-                shared_memory: Callable[[], int] = lambda: 0, user_tasks: Callable[[], int] = lambda: 0) -> bool:
+                shared_memory: Callable[[], int] = lambda: 0, counted: Optional[Counted] = None) -> bool:
     """Note the limits `usages` (one sample of the sandbox's processes) reach; True when the run's
     processes must end (memory, processes). Resident sizes count a page shared by forks once per fork, so past the
-    limit `shared_memory()` (the proportional total, slower to read) decides. The process limit is
-    the sandbox user's, across the runs at once: a run holding over PROCESS_SHARE_HOG of it while
-    `user_tasks()` (the user's total, read only then) is at the limit has reached it too, and must
-    end before the other runs' nodes cannot start a thread."""
+    limit `shared_memory()` (the proportional total, slower to read) decides.
+
+    Processes: where the run has a pids cgroup (`counted`), the kernel's count decides: a refused
+    fork is the limit reached, however few processes a sample shows (forks under way are counted
+    but not yet in /proc, and a sample under a fork bomb lags). Without one, the limit is
+    RLIMIT_NPROC in the run's own user namespace, and a sample near it decides."""
     limits = policy.limits
-    tasks = sum(u.tasks for u in usages)
+    tasks = counted.tasks if counted is not None else sum(u.tasks for u in usages)
     rss = sum(u.rss_bytes for u in usages)
     if rss > limits.memory_bytes:
         rss = min(rss, shared_memory())
     hits.sample(tasks, rss)
     end = False
-    if tasks >= limits.processes * PROCESS_SHARE_NOTED or (
-            tasks >= limits.processes * PROCESS_SHARE_HOG and user_tasks() >= limits.processes * PROCESS_SHARE_NOTED):
+    if tasks >= limits.processes * PROCESS_SHARE_NOTED or (counted is not None and counted.refusals > 0):
         # A fork bomb at its limit retries fork() in every process: it would starve the other
         # runs of CPU, so its run ends here.
         hits.note("processes", "your code reached the process limit (%d processes and threads); "
@@ -140,6 +147,7 @@ class RunSandbox:
         self._closed = threading.Event()
         self._released = threading.Event()  # the keeper is gone: its holding thread may end
         self._watcher: Optional[threading.Thread] = None
+        self._cgroup: Optional[PidsCgroup] = None
 
     @property
     def level(self) -> str:
@@ -150,6 +158,8 @@ class RunSandbox:
 
         bubblewrap's --die-with-parent fires when the *thread* that started it ends, so the keeper
         is started by a thread of its own that lives until close(), whichever thread asks first."""
+        # Outside the run's pids cgroup: the limit counts the student's processes (and the nsenter
+        # each waits under), not the keeper's two.
         argv = commands.keeper_command(self.policy, traverser(*identity(self.policy.level, self.policy.user)))
         started = threading.Event()
         failure: List[BaseException] = []
@@ -193,6 +203,8 @@ class RunSandbox:
         with self._lock:
             if self._closed.is_set():
                 raise RuntimeError("the sandbox is closed")
+            if self._watcher is None:  # the first start: the run's pids cgroup, where the machine gives one
+                self._cgroup = PidsCgroup.create(self.policy.limits.processes)
             if levels.uses_namespaces(self.level) and self._keeper is None:
                 self._start_keeper()
             if self._watcher is None:
@@ -205,7 +217,8 @@ class RunSandbox:
         them to subprocess.Popen."""
         self._ensure_started()
         cwd = cwd or self.policy.home or "/"
-        argv = commands.enter_command(self.policy, self._init_pid, command, cwd)
+        argv = self._join() + commands.enter_command(self.policy, self._init_pid, command, cwd,
+                                                     counted=self._cgroup is not None)
         popen_cwd = None if levels.uses_namespaces(self.level) else cwd
         return argv, student_env(self.policy, env), popen_cwd
 
@@ -218,11 +231,21 @@ class RunSandbox:
                                 env=env, cwd=cwd, start_new_session=True)
         return _collect(proc, timeout)
 
+    def _join(self) -> List[str]:
+        """The prefix that starts a command in the run's pids cgroup (none without one)."""
+        return self._cgroup.join_prefix() if self._cgroup is not None else []
+
+    @property
+    def counts_processes(self) -> bool:
+        """Whether a pids cgroup of its own counts and limits this run's processes."""
+        return self._cgroup is not None
+
     def processes(self) -> List[int]:
-        """The host pids of every process in the sandbox (its namespace init excluded)."""
-        if self._namespace is None:
-            return []
-        return [pid for pid in procs.members(self._namespace) if pid != self._init_pid]
+        """The host pids of every process in the sandbox (its namespace init excluded); without
+        namespaces, those in its pids cgroup, if any."""
+        if self._namespace is not None:
+            return [pid for pid in procs.members(self._namespace) if pid != self._init_pid]
+        return self._cgroup.members() if self._cgroup is not None else []
 
     def host_pid(self, namespace_pid: int) -> Optional[int]:
         """The host pid of the sandbox's process whose pid inside the sandbox is `namespace_pid`
@@ -244,10 +267,9 @@ class RunSandbox:
         """One look at the sandbox's processes (see judge_usage): True when they must end."""
         pids = self.processes()
         usages = [u for u in (procs.usage(pid) for pid in pids) if u is not None]
-        return bool(usages) and judge_usage(self.policy, usages, self.hits,
-                                            lambda: sum(procs.proportional_bytes(pid) or 0 for pid in pids),
-                                            lambda: max((procs.user_tasks(uid) for uid in
-                                                         {procs.owner(pid) for pid in pids} - {None}), default=0))
+        counted = (Counted(self._cgroup.tasks(), self._cgroup.refusals()) if self._cgroup is not None else None)
+        return bool(usages or counted) and judge_usage(
+            self.policy, usages, self.hits, lambda: sum(procs.proportional_bytes(pid) or 0 for pid in pids), counted)
 
     def end_processes(self, rounds: int = 20) -> None:
         """Kill every process in the sandbox now (the keeper stays: later starts still work).
@@ -288,7 +310,7 @@ class RunSandbox:
     def write_report(self) -> None:
         if not self.policy.report:
             return
-        data = dict(self.hits.as_dict(), level=self.level,
+        data = dict(self.hits.as_dict(), level=self.level, processes_counted_by_cgroup=self.counts_processes,
                     isolation=levels.describe(self.level, self.policy.user),
                     limits=self.policy.limits._asdict())
         tmp = self.policy.report + ".tmp"
@@ -307,12 +329,14 @@ class RunSandbox:
         # (a fork bomb that keeps the node from starting a thread), and the verdict must say so.
         self._sample()
         with self._lock:
-            if levels.uses_namespaces(self.level):
+            if levels.uses_namespaces(self.level) or self._cgroup is not None:
                 # The processes first, so a stopped nsenter is continued and reaps its child: the
                 # namespace's init, killed next, cannot finish dying while a member is unreaped.
                 self.end_processes()
                 self._kill_keeper()
             self._released.set()
+            if self._cgroup is not None:
+                _remove_when_empty(self._cgroup)
         self.write_report()
 
     def __enter__(self) -> "RunSandbox":
@@ -320,6 +344,15 @@ class RunSandbox:
 
     def __exit__(self, *exc) -> None:
         self.close()
+
+
+def _remove_when_empty(group: PidsCgroup, timeout: float = KEEPER_EXIT_S) -> None:
+    """Remove a run's pids cgroup once the processes killed in it are gone (a killed process
+    leaves its cgroup when it is reaped); left in place, empty of use, if one never goes."""
+    deadline = time.monotonic() + timeout
+    while not group.remove() and time.monotonic() < deadline:
+        procs.signal_all(group.members(), signal.SIGKILL)
+        time.sleep(0.01)
 
 
 def _collect(proc: subprocess.Popen, timeout: float) -> Tuple[Optional[int], bytes]:
@@ -362,32 +395,36 @@ def run_oneshot(policy: Policy, command: Sequence[str], cwd: str, env: Dict[str,
                 timeout: float) -> Optional[int]:
     """Run `command` (a build) in a sandbox of its own with output to `log_path`: its exit code,
     or None past `timeout`. Nothing it started outlives it."""
-    with open(log_path, "wb") as log:
-        proc = _start_oneshot(policy, command, cwd, env, stdout=log, stderr=subprocess.STDOUT)
+    with open(log_path, "wb") as log, _oneshot(policy, command, cwd, env, stdout=log, stderr=subprocess.STDOUT) as proc:
         try:
-            code: Optional[int] = proc.wait(timeout)
+            return proc.wait(timeout)
         except subprocess.TimeoutExpired:
-            code = None
-        finally:
-            for pid in procs.descendants(proc.pid) + [proc.pid]:
-                try:
-                    os.kill(pid, signal.SIGKILL)
-                except (ProcessLookupError, PermissionError):
-                    pass
-            proc.wait()
-    return code
+            return None
 
 
 def capture_oneshot(policy: Policy, command: Sequence[str], cwd: str, env: Dict[str, str],
                     timeout: float = 60.0) -> Tuple[Optional[int], bytes]:
     """Run `command` in a sandbox of its own: exit code (None past `timeout`) and stdout (1 MiB at most)."""
-    proc = _start_oneshot(policy, command, cwd, env, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)
-    return _collect(proc, timeout)
+    with _oneshot(policy, command, cwd, env, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL) as proc:
+        return _collect(proc, timeout)
 
 
-def _start_oneshot(policy: Policy, command: Sequence[str], cwd: str, env: Dict[str, str], **streams) -> subprocess.Popen:
-    argv = commands.oneshot_command(policy, command, cwd, traverser(*identity(policy.level, policy.user)))
-    return subprocess.Popen(argv, cwd=cwd, env=env, stdin=subprocess.DEVNULL, start_new_session=True, **streams)
+@contextlib.contextmanager
+def _oneshot(policy: Policy, command: Sequence[str], cwd: str, env: Dict[str, str],
+             **streams) -> Iterator[subprocess.Popen]:
+    """A oneshot sandbox's process, in a pids cgroup of its own where the machine gives one;
+    at the end every process it started is killed."""
+    group = PidsCgroup.create(policy.limits.processes)
+    argv = (group.join_prefix() if group is not None else []) + commands.oneshot_command(
+        policy, command, cwd, traverser(*identity(policy.level, policy.user)), counted=group is not None)
+    proc = subprocess.Popen(argv, cwd=cwd, env=env, stdin=subprocess.DEVNULL, start_new_session=True, **streams)
+    try:
+        yield proc
+    finally:
+        procs.signal_all(procs.descendants(proc.pid) + [proc.pid], signal.SIGKILL)
+        proc.wait()
+        if group is not None:
+            _remove_when_empty(group)
 
 
 def end_user_processes(user: str, gid: int, rounds: int = 20) -> int:

@@ -6,7 +6,7 @@ from hypothesis import strategies as st
 
 from course_sandbox import access, commands, levels
 from course_sandbox.policy import Limits, Policy
-from course_sandbox.run import LimitHits, judge_usage, student_env
+from course_sandbox.run import Counted, LimitHits, judge_usage, student_env
 from course_sandbox.procs import Usage
 
 paths = st.lists(st.text(st.characters(blacklist_categories=("Cs",), blacklist_characters="\0"), max_size=30),
@@ -67,6 +67,8 @@ def test_the_user_switch_and_the_process_limit_follow_the_level():
         assert any(a.startswith("--nproc=") for a in argv) == nproc, level
         assert ("nsenter" in argv) == levels.uses_namespaces(level), level
         assert argv[-1] == "talker" and "--default-signal=INT,TERM" in argv
+        counted = commands.enter_command(Policy(level, user="cs"), 42, ["talker"], "/home", counted=True)
+        assert not any(a.startswith("--nproc=") for a in counted), "a pids cgroup is the limit: %s" % level
 
 
 def test_the_weaker_level_wins_and_a_missing_user_stops_a_root_grader(monkeypatch):
@@ -105,13 +107,17 @@ def test_limits_are_noted_and_the_run_ended_past_memory_or_processes():
     hits = LimitHits()
     assert not judge_usage(policy, [Usage(10, 100, 1.0)], hits) and not hits.hits
     assert judge_usage(policy, [Usage(95, 100, 1.0)], hits) and "process limit" in hits.hits["processes"]
-    # The limit is the user's, shared with the runs at once: a run holding most of it while the
-    # user is at the limit is ended; one holding little is not, whatever the user's total.
+    # With a pids cgroup the kernel's count decides: a refused fork is the limit reached, however
+    # few processes the sample saw; its count includes forks not yet in /proc.
     hits = LimitHits()
-    assert not judge_usage(policy, [Usage(20, 100, 1.0)], hits, user_tasks=lambda: 99) and not hits.hits
-    assert not judge_usage(policy, [Usage(40, 100, 1.0)], hits, user_tasks=lambda: 70) and not hits.hits
-    assert judge_usage(policy, [Usage(40, 100, 1.0)], hits, user_tasks=lambda: 95)
+    assert not judge_usage(policy, [Usage(20, 100, 1.0)], hits, counted=Counted(20, 0)) and not hits.hits
+    assert judge_usage(policy, [Usage(20, 100, 1.0)], hits, counted=Counted(20, 3))
     assert "process limit" in hits.hits["processes"]
+    hits = LimitHits()
+    assert judge_usage(policy, [Usage(20, 100, 1.0)], hits, counted=Counted(96, 0)) and "processes" in hits.hits
+    assert hits.as_dict()["peak_tasks"] == 96
+    hits = LimitHits()
+    assert judge_usage(policy, [], hits, counted=Counted(0, 1)), "refusals count when every process is gone"
     hits = LimitHits()
     assert not judge_usage(policy, [Usage(1, 5000, 1.0)] * 2, hits, shared_memory=lambda: 900)
     assert judge_usage(policy, [Usage(1, 5000, 1.0)] * 2, hits, shared_memory=lambda: 1500)

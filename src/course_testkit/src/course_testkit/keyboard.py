@@ -154,6 +154,21 @@ class PtyKeyboard:
                 except ProcessLookupError:
                     pass
 
+    def end(self) -> Optional[int]:
+        """SIGKILL to the node, its group and every process below it (NodeProcess.end), then
+        its terminal closed: a check's clean-up once its verdict is in."""
+        for pid in descendants(self.node.proc.pid) if self.node.running() else []:
+            try:
+                os.kill(pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+        code = self.node.end()
+        try:
+            os.close(self.master)
+        except OSError:
+            pass
+        return code
+
     def _stop(self, timeout: float, grace: float) -> Optional[int]:
         if self.node.running():
             try:

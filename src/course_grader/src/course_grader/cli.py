@@ -60,7 +60,10 @@ def default_jobs(cores: int, memory_mib: float) -> int:
     return max(1, min(RUNS_PER_CORE * cores, int(memory_mib // MIB_PER_RUN)))
 
 
-DEFAULT_JOBS = default_jobs(len(os.sched_getaffinity(0)), available_mib())
+CORES = len(os.sched_getaffinity(0))
+DEFAULT_JOBS = default_jobs(CORES, available_mib())
+# Submissions built at once, beside the runs: a build (catkin_make) keeps about one core busy.
+DEFAULT_BUILDS = max(1, CORES // 2)
 
 
 def parse(argv: Optional[List[str]]) -> argparse.Namespace:
@@ -70,6 +73,8 @@ def parse(argv: Optional[List[str]]) -> argparse.Namespace:
     parser.add_argument("--class", dest="class_dir", help="a folder whose every entry is one submission")
     parser.add_argument("--jobs", "-j", type=int, default=DEFAULT_JOBS,
                         help="milestone runs at once, across submissions (default %(default)s)")
+    parser.add_argument("--builds", type=int, default=DEFAULT_BUILDS,
+                        help="submissions built at once, beside the runs (default %(default)s)")
     parser.add_argument("--only", action="extend", nargs="+", metavar="M",
                         help="grade only these milestones (--only a b, or --only a --only b)")
     parser.add_argument("--only-from", metavar="FILE",
@@ -117,7 +122,8 @@ def main(argv: Optional[List[str]] = None) -> int:
     started = time.monotonic()
     try:
         grader = Grader(MILESTONES, Options(out, opts.jobs, opts.only, opts.only_from, opts.timeout,
-                                            opts.verbose or reference, [s.path for s in subs if s.path]))
+                                            opts.verbose or reference, [s.path for s in subs if s.path],
+                                            opts.builds))
     except levels.Unavailable as err:
         print("cannot grade: %s" % err, file=sys.stderr)
         return 2
@@ -128,7 +134,7 @@ def main(argv: Optional[List[str]] = None) -> int:
     if opts.results_json:
         shutil.copyfile(os.path.join(out, subs[0].name, "results.json"), opts.results_json)
     failed = [v for v in verdicts if not v.passed]
-    print("graded %d submission(s), %d milestone verdicts (%d failed) in %.1f s, --jobs %d; see %s"
-          % (len(subs), len(verdicts), len(failed), time.monotonic() - started, opts.jobs,
+    print("graded %d submission(s), %d milestone verdicts (%d failed) in %.1f s, --jobs %d --builds %d; see %s"
+          % (len(subs), len(verdicts), len(failed), time.monotonic() - started, opts.jobs, opts.builds,
              os.path.join(out, "report.html")), flush=True)
     return 1 if reference and failed else 0

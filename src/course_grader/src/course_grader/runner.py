@@ -1,5 +1,8 @@
 """Grade submissions: unpack, build an overlay, run each selected milestone's rostest, isolated,
-with `jobs` runs at once across submissions; write each verdict's JUnit XML and each
+with `jobs` runs at once across submissions and, beside them, `builds` submissions unpacked and
+built at once (a build keeps a core busy while most of a run waits on behaviour: building the
+next submission while the last one's runs go on fills those waits; with builds in the same pool,
+every build would come first and the runs after, waiting on each other); write each verdict's JUnit XML and each
 submission's results.json as soon as it is complete. One submission's failure (even a crash of
 the grader on it) is that submission's verdict and never stops the others."""
 from __future__ import annotations
@@ -58,6 +61,7 @@ class Options(NamedTuple):
     timeout: float = 240.0  # per milestone run
     verbose: bool = False
     sources: Sequence[str] = ()  # the submissions' own paths (the class folder): hidden from student code
+    builds: int = 1  # submissions unpacked and built at once, beside the `jobs` runs
 
 
 class _Progress:
@@ -90,11 +94,12 @@ class Grader:
         self._durations_path = os.path.join(options.out, WORK_DIR, "durations.json")
         self._durations = dict(TYPICAL_S, **_load_json(self._durations_path))
         self._pool = ThreadPoolExecutor(max(1, options.jobs), thread_name_prefix="grade")
+        self._builds = ThreadPoolExecutor(max(1, options.builds), thread_name_prefix="build")
         self._setup = workspace.course_setup()
         self.sandbox = SandboxPlan(options.out, workspace.course_root(self._setup), options.sources)
 
     # -- scheduling -------------------------------------------------------------------------
-    def _submit(self, fn, *args) -> None:
+    def _submit(self, fn, *args, pool: Optional[ThreadPoolExecutor] = None) -> None:
         with self._lock:
             self._pending += 1
 
@@ -105,16 +110,17 @@ class Grader:
                 with self._lock:
                     self._pending -= 1
                     self._idle.notify_all()
-        self._pool.submit(task)
+        (pool or self._pool).submit(task)
 
     def grade(self, subs: Sequence[Submission], reference: bool = False) -> List[Verdict]:
         for sub in subs:
             self._progress[sub.name] = _Progress(sub)
-            self._submit(self._prepare, sub, reference)
+            self._submit(self._prepare, sub, reference, pool=self._builds)
         with self._lock:
             while self._pending:
                 self._idle.wait()
         self._pool.shutdown()
+        self._builds.shutdown()
         self.sandbox.end_leftovers()
         self._durations.update({v.milestone.name: round(v.elapsed, 1) for v in self.verdicts if v.elapsed})
         os.makedirs(os.path.dirname(self._durations_path), exist_ok=True)

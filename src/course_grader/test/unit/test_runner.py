@@ -107,3 +107,37 @@ def test_default_jobs_are_three_per_core_within_the_memory(tmp_path):
     (tmp_path / "cg" / "memory.max").write_text("1073741824\n")
     (tmp_path / "cg" / "memory.current").write_text("%d\n" % (200 * 2 ** 20))
     assert available_mib(str(tmp_path / "meminfo"), str(tmp_path / "cg")) == 824
+
+
+def test_a_submission_s_runs_go_on_while_the_next_one_builds(tmp_path, monkeypatch):
+    """Builds have a lane of their own: bob's build waits until one of alice's runs has started,
+    which only works if her runs are not queued behind bob's build (one run at once, one build)."""
+    import threading
+    alice_ran = threading.Event()
+    builds_at_once, most = [], [0]
+
+    def rostest(pkg, test_file, env=None, results_dir=None, **kwargs):
+        if "/alice/" in (results_dir or ""):
+            alice_ran.set()
+        return _fake_rostest(pkg, test_file, env=env, results_dir=results_dir, **kwargs)
+
+    def build(ws, setup, plan, home, log):
+        builds_at_once.append(ws)
+        most[0] = max(most[0], len(builds_at_once))
+        try:
+            if "/bob/" in ws:
+                assert alice_ran.wait(20), "alice's runs waited for bob's build"
+            return BuildResult(True, "", "", {"PATH": "/usr/bin"})
+        finally:
+            builds_at_once.remove(ws)
+    monkeypatch.setattr(runner, "run_rostest", rostest)
+    monkeypatch.setenv("COURSE_SANDBOX_LEVEL", "none")
+    monkeypatch.setattr(workspace, "course_packages", lambda: {"turtlesim"})
+    monkeypatch.setattr(workspace, "course_setup", lambda: "/nowhere/setup.bash")
+    monkeypatch.setattr(workspace, "course_site", lambda setup: "")
+    monkeypatch.setattr(workspace, "build", build)
+    subs = [_folder(tmp_path, name, ["chatter"]) for name in ("alice", "bob", "carol")]
+    grader = runner.Grader([CHATTER], runner.Options(str(tmp_path / "out"), jobs=1, builds=1), say=lambda line: None)
+    verdicts = grader.grade(subs)
+    assert sorted((v.student, v.passed) for v in verdicts) == [("alice", True), ("bob", True), ("carol", True)]
+    assert most[0] == 1, "one build at once"

@@ -1,10 +1,10 @@
 """Grade submissions: unpack, build an overlay, run each selected milestone's rostest, isolated,
 with `jobs` runs at once across submissions and, beside them, `builds` submissions unpacked and
 built at once (a build keeps a core busy while most of a run waits on behaviour: building the
-next submission while the last one's runs go on fills those waits; with builds in the same pool,
-every build would come first and the runs after, waiting on each other); write each verdict's JUnit XML and each
-submission's results.json as soon as it is complete. One submission's failure (even a crash of
-the grader on it) is that submission's verdict and never stops the others."""
+next submission while the last one's runs go on fills those waits; in one pool, every build came
+first and the runs after); write each verdict's JUnit XML and each submission's results.json as
+soon as it is complete. One submission's failure (even a crash of the grader on it) is that
+submission's verdict and never stops the others."""
 from __future__ import annotations
 
 import json

@@ -284,7 +284,9 @@ class RunSandbox:
             pids = self.processes()
             if not pids:
                 break
-            entered |= {p for p in (procs.parent(pid) for pid in pids) if p and p not in pids and p != self._init_pid}
+            if self._namespace is not None:  # without one, the parents outside are the check itself
+                entered |= {p for p in (procs.parent(pid) for pid in pids)
+                            if p and p not in pids and p != self._init_pid}
             for sig in (signal.SIGSTOP, signal.SIGKILL):
                 procs.signal_all(pids, sig)
         procs.signal_all(entered, signal.SIGCONT)

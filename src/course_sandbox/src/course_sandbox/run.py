@@ -203,11 +203,10 @@ class RunSandbox:
         with self._lock:
             if self._closed.is_set():
                 raise RuntimeError("the sandbox is closed")
-            if self._watcher is None:  # the first start: the run's pids cgroup, where the machine gives one
-                self._cgroup = PidsCgroup.create(self.policy.limits.processes)
             if levels.uses_namespaces(self.level) and self._keeper is None:
                 self._start_keeper()
-            if self._watcher is None:
+            if self._watcher is None:  # the first start: the run's pids cgroup (where the machine has one)
+                self._cgroup = PidsCgroup.create(self.policy.limits.processes)
                 self._watcher = threading.Thread(target=self._watch, name="sandbox-watch", daemon=True)
                 self._watcher.start()
 

@@ -20,7 +20,7 @@ import time
 from typing import Callable, Optional, Sequence, TypeVar
 
 from course_keyboard.arrows import SEQUENCES as ARROW_SEQUENCES
-from course_testkit.isolation import descendants
+from course_testkit.isolation import descendants, signal_all
 from course_testkit.nodes import NodeProcess, find_executable
 from course_testkit.waiting import wait_for
 
@@ -148,20 +148,12 @@ class PtyKeyboard:
         try:
             return self._stop(timeout, grace)
         finally:
-            for pid in tree:
-                try:
-                    os.kill(pid, signal.SIGKILL)
-                except ProcessLookupError:
-                    pass
+            signal_all(tree, signal.SIGKILL)
 
     def end(self) -> Optional[int]:
         """SIGKILL to the node, its group and every process below it (NodeProcess.end), then
         its terminal closed: a check's clean-up once its verdict is in."""
-        for pid in descendants(self.node.proc.pid) if self.node.running() else []:
-            try:
-                os.kill(pid, signal.SIGKILL)
-            except ProcessLookupError:
-                pass
+        signal_all(descendants(self.node.proc.pid) if self.node.running() else [], signal.SIGKILL)
         code = self.node.end()
         try:
             os.close(self.master)

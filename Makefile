@@ -2,8 +2,15 @@
 SHELL := /bin/bash
 ROOT := $(abspath $(dir $(lastword $(MAKEFILE_LIST))))
 WS := $(ROOT)/catkin_ws
-# Every ROS command runs in the workspace environment, with the venv's python3 first.
+# The reference solutions (solutions/, under the texts' package names) are an overlay of their own,
+# solutions_ws, chained on the course workspace: the course (catkin_ws) holds infrastructure only.
+# The student image has no solutions/ and so no overlay.
+SOLUTIONS_WS := $(ROOT)/solutions_ws
+HAVE_SOLUTIONS := $(wildcard $(ROOT)/solutions/*/package.xml)
+# Every ROS command runs in the course's environment, with the venv's python3 first; the tests and
+# benchmarks in the reference overlay's (the grader re-runs itself in the course's alone).
 ROSENV := source $(WS)/devel/setup.bash &&
+REFENV := source $(if $(HAVE_SOLUTIONS),$(SOLUTIONS_WS),$(WS))/devel/setup.bash &&
 
 .PHONY: deps build demo lab test flake-hunt unit rostest grade autograder bench bench-grade docker-check autograder-check clean
 
@@ -14,18 +21,23 @@ build: deps
 	@cd $(WS) && catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release > $(WS)/build.log 2>&1 \
 	  || { tail -n 60 $(WS)/build.log; exit 1; }
 	@echo "build: ok (log in catkin_ws/build.log)"
+ifneq ($(HAVE_SOLUTIONS),)
+	@$(ROSENV) cd $(SOLUTIONS_WS) && catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release \
+	  > $(SOLUTIONS_WS)/build.log 2>&1 || { tail -n 60 $(SOLUTIONS_WS)/build.log; exit 1; }
+	@echo "build: reference solutions ok, an overlay in solutions_ws (log in solutions_ws/build.log)"
+endif
 
 demo: build
 	@$(ROSENV) python3 $(ROOT)/tools/demo.py
 
 test: build
-	@$(ROSENV) cd $(ROOT) && python3 -m pytest
+	@$(REFENV) cd $(ROOT) && python3 -m pytest
 
 # make flake-hunt K=10: the whole suite K times in a row, failures per test (docs/testing.md).
 # UNTIL_FAIL=1 stops at the first failing run; ARGS="..." goes to pytest (a subset, -k ...).
 K ?= 10
 flake-hunt: build
-	@$(ROSENV) cd $(ROOT) && python3 tools/flake_hunt.py $(if $(UNTIL_FAIL),--until-fail) $(K) $(ARGS)
+	@$(REFENV) cd $(ROOT) && python3 tools/flake_hunt.py $(if $(UNTIL_FAIL),--until-fail) $(K) $(ARGS)
 
 # make grade: our reference solutions, every milestone. make grade SUBMISSIONS=DIR: every entry of
 # DIR (folder, .zip, .tar.gz) is one student's submission. Results in $(GRADES) (default ./grades).
@@ -48,12 +60,12 @@ autograder: build
 	@$(ROSENV) rosrun course_grader make_autograder --out $(ROOT)/autograder.zip $(foreach m,$(MILESTONES),--only $(m))
 
 bench: build
-	@$(ROSENV) cd $(ROOT) && python3 bench/turtlesim_bench.py && python3 bench/relay_bench.py \
+	@$(REFENV) cd $(ROOT) && python3 bench/turtlesim_bench.py && python3 bench/relay_bench.py \
 	  && python3 bench/sim_bench.py && python3 bench/web_bench.py --simulator
 
 # The grader's trust and speed: the reference graded 20 times, then a class of 30 (about 45 min).
 bench-grade: build
-	@$(ROSENV) cd $(ROOT) && python3 bench/grade_bench.py
+	@$(REFENV) cd $(ROOT) && python3 bench/grade_bench.py
 
 # docker/Dockerfile built without a Docker engine, in a debootstrap chroot, then its CMD (the demo)
 # run as the image's user. Needs root; downloads ~1 GB; 10-20 min. DOCKER_CHECK_ARGS="--keep" etc.
@@ -69,4 +81,4 @@ autograder-check:
 	@python3 $(ROOT)/tools/podman_check.py autograder-check $(ROOT)/autograder.zip
 
 clean:
-	rm -rf $(WS)/build $(WS)/devel $(WS)/build.log
+	rm -rf $(WS)/build $(WS)/devel $(WS)/build.log $(SOLUTIONS_WS)/build $(SOLUTIONS_WS)/devel $(SOLUTIONS_WS)/build.log

@@ -103,7 +103,7 @@ def make_class(scratch: Path, size: int) -> Path:
     packages = student_packages()
     for n in range(1, size + 1):
         for pkg in packages:
-            shutil.copytree(ROOT / "src" / pkg, classroom / ("student%02d" % n) / pkg, symlinks=True)
+            shutil.copytree(ROOT / "solutions" / pkg, classroom / ("student%02d" % n) / pkg, symlinks=True)
     print("class of %d submissions (packages: %s)" % (size, " ".join(packages)), flush=True)
     return classroom
 

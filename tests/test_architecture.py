@@ -25,6 +25,7 @@ from course_testkit import package_scan as scan
 
 ROOT = Path(__file__).resolve().parents[1]
 SRC = str(ROOT / "src")
+SOLUTIONS = str(ROOT / "solutions")  # the reference solutions: the exercises, apart from the course
 ARCHITECTURE_DOC = ROOT / "docs" / "architecture.md"
 ROLES = ("exercise", "simulator", "library", "tool", "test_support", "grading")
 # importer's role -> roles whose Python modules it may import (besides messages, and itself).
@@ -38,13 +39,14 @@ MAY_IMPORT: Dict[str, Set[str]] = {
 }
 
 
-def roles(src: str = SRC) -> Dict[str, str]:
-    return {name: scan.role(folder) for name, folder in scan.packages(src).items()}
+def roles(*srcs: str) -> Dict[str, str]:
+    return {name: scan.role(folder) for name, folder in scan.packages(*(srcs or (SRC, SOLUTIONS))).items()}
 
 
-def violations(src: str = SRC) -> List[str]:
-    pkgs = scan.packages(src)
-    role_of = roles(src)
+def violations(*srcs: str) -> List[str]:
+    srcs = srcs or (SRC, SOLUTIONS)
+    pkgs = scan.packages(*srcs)
+    role_of = roles(*srcs)
     providers = scan.python_modules_of(pkgs)
     found = []
     for name, folder in pkgs.items():
@@ -60,7 +62,8 @@ def violations(src: str = SRC) -> List[str]:
                 allowed = MAY_IMPORT.get(role, set()) | ({"test_support", "simulator"} if is_test else set())
                 if role_of.get(provider) not in allowed:
                     found.append("%s (%s) imports %s from %s (%s)" % (
-                        os.path.relpath(path, src), role, dotted, provider, role_of.get(provider)))
+                        os.path.relpath(path, os.path.dirname(folder)), role, dotted, provider,
+                        role_of.get(provider)))
     return found
 
 
@@ -85,6 +88,14 @@ def test_no_exercise_imports_another_exercise(tmp_path):
         (pkg / "package.xml").write_text('<package format="2"><name>%s</name><export><course_role>%s'
                                          '</course_role></export></package>' % (name, role))
     assert violations(str(tmp_path / "src")) == ["ex_a/src/ex_a_core/keys.py (exercise) imports ex_b_core.keys from ex_b (exercise)"]
+
+
+def test_exercises_are_the_solutions_folder_and_nothing_else():
+    """The course (src/) holds infrastructure only; every exercise (a reference solution) is in
+    solutions/, which holds nothing else: a student's package is never completed by ours."""
+    course, solutions = roles(SRC), roles(SOLUTIONS)
+    assert sorted(n for n, r in course.items() if r == "exercise") == []
+    assert solutions and sorted(n for n, r in solutions.items() if r != "exercise") == []
 
 
 def test_the_architecture_doc_names_every_package():

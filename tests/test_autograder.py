@@ -62,7 +62,7 @@ def _check_format(results: dict) -> None:
 
 
 @pytest.mark.parametrize("submission,passed", [
-    (ROOT / "src" / "chatter", True),  # our reference package, handed in as a student would
+    (ROOT / "solutions" / "chatter", True),  # our reference package, handed in as a student would
     (ROOT / "tests" / "submissions" / "bad_wrong_name", False),
 ], ids=["good", "bad"])
 def test_run_autograder(autograder_zip: Path, tmp_path: Path, submission: Path, passed: bool) -> None:

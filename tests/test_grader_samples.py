@@ -3,6 +3,11 @@ verdict against the sample's expected.json:
   {"<milestone>": {"passed": true}} or {"<milestone>": {"passed": false, "reason": "<regex>"}}
 The regex must match the milestone's output in the sample's Gradescope results.json (the
 failing check in words plus the student's log tails). Only the listed milestones are graded.
+A sample with a `derive.json` is a variant of another folder of this checkout (a reference
+solution, another sample), so that neither code nor answers are written twice: it is made in a
+temporary folder before grading, from {"copy": [[source, target], ...]} (folders of the checkout,
+copied into the sample), then the sample's own files over them, then {"remove": [path, ...]} and
+{"replace": [[path, old, new], ...]} (each `old` must be there).
 `"needs_isolation": true` (the attack samples): the verdict holds only where the sandbox isolates
 student code; where it would run with the grader's rights (isolation `none`: not root and no
 namespaces, e.g. `make test` as a user in a container), the sample is not graded and its test is
@@ -49,6 +54,28 @@ STOP_TIMEOUT_S = 30.0
 MESSAGE_CHARS = 2500
 
 
+def materialise(sample: Path, dest: Path) -> Path:
+    """The sample as handed in: itself, or for a derived sample (derive.json) the folder it
+    describes, made under `dest`."""
+    recipe_path = sample / "derive.json"
+    if not recipe_path.is_file():
+        return sample
+    recipe = json.loads(recipe_path.read_text())
+    made = dest / sample.name
+    shutil.rmtree(made, ignore_errors=True)
+    for source, target in recipe.get("copy", []):
+        shutil.copytree(ROOT / source, made / target, ignore=shutil.ignore_patterns("__pycache__", "*.pyc"))
+    shutil.copytree(sample, made, dirs_exist_ok=True, ignore=shutil.ignore_patterns("derive.json"))
+    for rel in recipe.get("remove", []):
+        path = made / rel
+        shutil.rmtree(path) if path.is_dir() else path.unlink()
+    for rel, old, new in recipe.get("replace", []):
+        text = (made / rel).read_text()
+        assert old in text, "%s: derive.json replaces %r, which %s does not hold" % (sample.name, old, rel)
+        (made / rel).write_text(text.replace(old, new))
+    return made
+
+
 class SampleGrading:
     """`rosrun course_grader grade` on every sample, running in the background from the start.
     Its output goes to a file (a pipe nobody reads yet would fill and stop the grader)."""
@@ -58,7 +85,8 @@ class SampleGrading:
         self.folder.chmod(0o755)  # the sandbox user passes through it to each student's workspace
         self.out = self.folder / "grades"
         self.checkout_before = checkout_state()
-        self.grader = NodeProcess(["rosrun", "course_grader", "grade"] + [str(s) for s in SAMPLES]
+        handed_in = [materialise(s, self.folder / "derived") for s in SAMPLES]
+        self.grader = NodeProcess(["rosrun", "course_grader", "grade"] + [str(s) for s in handed_in]
                                   + ["--only-from", "expected.json", "--jobs", str(JOBS), "--out", str(self.out)],
                                   stdin=subprocess.DEVNULL, log_path=str(self.folder / "grade.log"))
 

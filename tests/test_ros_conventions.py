@@ -20,6 +20,7 @@ from course_testkit import package_scan as scan
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SRC = os.path.join(ROOT, "src")
+SOLUTIONS = os.path.join(ROOT, "solutions")  # the reference solutions, an overlay of their own
 CATKIN_LINT = os.path.join(ROOT, ".venv", "bin", "catkin_lint")
 
 # Python modules that are not catkin packages of the same name -> their rosdep key.
@@ -46,26 +47,27 @@ ROS_MODULES = {"rospy", "rosgraph", "roslib", "roslaunch", "rostest", "rosnode",
 def test_catkin_lint_finds_nothing():
     if not os.access(CATKIN_LINT, os.X_OK):
         pytest.fail("catkin_lint is missing from the venv: run `make deps` (requirements.txt lists it)")
-    result = subprocess.run([CATKIN_LINT, "-W1", "src"], cwd=os.path.join(ROOT, "catkin_ws"),
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True)
-    assert "found 0 problems" in result.stdout and result.returncode == 0, result.stdout
+    for ws in ("catkin_ws", "solutions_ws"):
+        result = subprocess.run([CATKIN_LINT, "-W1", "src"], cwd=os.path.join(ROOT, ws),
+                                stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True)
+        assert "found 0 problems" in result.stdout and result.returncode == 0, "%s: %s" % (ws, result.stdout)
 
 
 def launch_files() -> List[str]:
-    return sorted(os.path.join(root, name) for root, _, files in os.walk(SRC)
+    return sorted(os.path.join(root, name) for top in (SRC, SOLUTIONS) for root, _, files in os.walk(top)
                   for name in files if name.endswith(".launch"))
 
 
-@pytest.mark.parametrize("launch", launch_files(), ids=lambda p: os.path.relpath(p, SRC))
+@pytest.mark.parametrize("launch", launch_files(), ids=lambda p: os.path.relpath(p, ROOT))
 def test_roslaunch_check_passes(launch):
     # The same function roslaunch-check calls; in-process, it checks all 15 files in ~1 s.
     from roslaunch import rlutil
     error = rlutil.check_roslaunch(launch)
-    assert error is None, "roslaunch-check %s: %s" % (os.path.relpath(launch, SRC), error)
+    assert error is None, "roslaunch-check %s: %s" % (os.path.relpath(launch, ROOT), error)
 
 
-def undeclared_imports(src: str = SRC) -> List[str]:
-    pkgs = scan.packages(src)
+def undeclared_imports(*srcs: str) -> List[str]:
+    pkgs = scan.packages(*(srcs or (SRC, SOLUTIONS)))
     providers = scan.python_modules_of(pkgs)
     problems = []
     for name, folder in pkgs.items():
@@ -74,7 +76,7 @@ def undeclared_imports(src: str = SRC) -> List[str]:
             for module in sorted({dotted.split(".")[0] for dotted in scan.imports(path)}):
                 key = providers.get(module) or ROSDEP_KEYS.get(module) \
                     or (module if module in ROS_MODULES or module.endswith(("_msgs", "_srvs")) else None)
-                rel = os.path.relpath(path, src)
+                rel = os.path.relpath(path, os.path.dirname(folder))
                 if key is None:
                     if not is_test:
                         problems.append("%s imports %s, which no package or rosdep key in this "
@@ -107,7 +109,7 @@ def test_every_rostest_is_registered():
     """`catkin_make run_tests` runs a package's test/*.test only if its CMakeLists names it; an
     explicit add_rostest line (no file(GLOB), which misses a new file until CMake reruns)."""
     missing = []
-    for name, folder in scan.packages(SRC).items():
+    for name, folder in scan.packages(SRC, SOLUTIONS).items():
         test_dir = os.path.join(folder, "test")
         if not os.path.isdir(test_dir):
             continue

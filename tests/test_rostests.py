@@ -1,4 +1,5 @@
-"""Run every package's rostest files (src/*/test/*.test), each with its own master.
+"""Run every package's rostest files (src/*/test/*.test and the reference solutions'
+solutions/*/test/*.test), each with its own master.
 
 They run through course_testkit.rostest_runner, the same runner and pass rule the grader uses
 (exit code 0 and JUnit XML with at least one test and no failure), so they never touch a
@@ -14,7 +15,7 @@ import pytest
 from course_testkit.rostest_runner import run_rostest
 
 ROOT = Path(__file__).resolve().parents[1]
-TEST_FILES = sorted(ROOT.glob("src/*/test/*.test"))
+TEST_FILES = sorted(ROOT.glob("src/*/test/*.test")) + sorted(ROOT.glob("solutions/*/test/*.test"))
 TIMEOUT_S = 240
 OUTPUT_TAIL_LINES = 80
 

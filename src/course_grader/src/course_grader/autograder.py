@@ -16,7 +16,8 @@ from typing import Iterable, List, Optional, Sequence
 TEMPLATES = os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "autograder")
 ENTRY_POINTS = ("setup.sh", "run_autograder")
 # Not needed to grade: the sample submissions and build output.
-EXCLUDED_PREFIXES = ("tests/submissions/", "catkin_ws/build/", "catkin_ws/devel/", ".venv/")
+EXCLUDED_PREFIXES = ("tests/submissions/", "catkin_ws/build/", "catkin_ws/devel/", ".venv/",
+                     "solutions/", "solutions_ws/")  # the reference solutions: answers, never graded there
 
 
 def repo_files(repo: str) -> List[str]:

@@ -2,7 +2,10 @@
 
 Grades each SUBMISSION (a folder, .zip or .tar.gz of catkin packages), or every entry of a class
 folder (--class DIR), against the course milestones; with neither, grades the course's own
-reference solutions (every milestone). Writes under --out (default ./grades):
+reference solutions (every milestone; the checkout's solutions/ folder, built and run as an
+overlay like a student's). The grader runs in the course workspace's environment alone: started
+from another (the reference overlay sourced), it starts itself again in the course's.
+Writes under --out (default ./grades):
   <student>/<milestone>/junit.xml, *.log, *.png   verdict, student logs, canvas snapshots
   <student>/results.json                          Gradescope results
   gradebook.csv, report.html                      the class
@@ -21,7 +24,7 @@ from typing import List, Optional, Set, Tuple
 from course_milestones.registry import MILESTONES
 from course_sandbox import levels
 
-from course_grader import gradebook, report, submissions
+from course_grader import gradebook, report, submissions, workspace
 from course_grader.runner import REFERENCE, Grader, Options
 
 # Three milestone runs per core: most of a run is waiting on behaviour the text fixes (a drawing,
@@ -95,6 +98,20 @@ def split_only(only: Optional[List[str]], names: Set[str]) -> Tuple[Optional[Lis
     return [o for o in only or [] if o not in paths] or None, paths
 
 
+# Set in the environment of a grader that started itself again in the course's environment.
+COURSE_ENV_MARK = "COURSE_GRADER_COURSE_ENV"
+
+
+def in_course_environment() -> None:
+    """Go on in the course workspace's environment alone (workspace.course_environment): exec this
+    same command in it, once, unless this process already runs in it."""
+    if os.environ.get(COURSE_ENV_MARK) == "1":
+        return
+    env = workspace.course_environment(workspace.course_setup())
+    env[COURSE_ENV_MARK] = "1"
+    os.execve(sys.executable, [sys.executable] + sys.argv, env)
+
+
 def main(argv: Optional[List[str]] = None) -> int:
     opts = parse(argv)
     if opts.list:
@@ -116,7 +133,12 @@ def main(argv: Optional[List[str]] = None) -> int:
         print("--results-json needs exactly one submission", file=sys.stderr)
         return 2
     if reference:
-        subs = [submissions.Submission(REFERENCE, "")]
+        solutions = workspace.reference_solutions(workspace.course_setup())
+        if solutions is None:
+            print("no submission given, and this course has no reference solutions to grade (the student "
+                  "image holds none): grade SUBMISSION... or --class DIR", file=sys.stderr)
+            return 2
+        subs = [submissions.Submission(REFERENCE, solutions)]
     out = os.path.abspath(opts.out)
     os.makedirs(out, exist_ok=True)
     started = time.monotonic()

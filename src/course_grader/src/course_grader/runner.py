@@ -19,6 +19,7 @@ from concurrent.futures import ThreadPoolExecutor
 from typing import Callable, Dict, List, NamedTuple, Optional, Sequence
 
 from course_milestones.milestone import Milestone
+from course_milestones import unbuilt
 from course_milestones.scripts import script_problems
 from course_testkit import junit
 from course_testkit.artifacts import ENV_VAR as ARTIFACTS_VAR
@@ -96,7 +97,8 @@ class Grader:
         self._pool = ThreadPoolExecutor(max(1, options.jobs), thread_name_prefix="grade")
         self._builds = ThreadPoolExecutor(max(1, options.builds), thread_name_prefix="build")
         self._setup = workspace.course_setup()
-        self.sandbox = SandboxPlan(options.out, workspace.course_root(self._setup), options.sources)
+        self.sandbox = SandboxPlan(options.out, workspace.course_root(self._setup), options.sources,
+                                   reference=workspace.reference_folders(self._setup))
 
     # -- scheduling -------------------------------------------------------------------------
     def _submit(self, fn, *args, pool: Optional[ThreadPoolExecutor] = None) -> None:
@@ -159,12 +161,8 @@ class Grader:
         progress.started = time.monotonic()
         selected: List[Milestone] = []
         try:
-            if reference:
-                selected = verdict.select(self.milestones, [], self._only_for(None), True)
-                self._expect(sub, len(selected))
-                for m in longest_first(selected, self._durations):
-                    self._submit(self._run, sub, m, workspace.trusted_base_env(), [], None, None)
-                return
+            # The reference (the checkout's solutions/) is graded as a student's submission is:
+            # copied, built as an overlay in the sandbox and run there; only its milestones are all.
             self._private_folders(sub.name)
             files = self._work_dir(sub.name, "files")
             try:
@@ -179,7 +177,7 @@ class Grader:
                 return
             packages = submissions.find_packages(files)
             names = [p.name for p in packages if p.name]
-            selected = verdict.select(self.milestones, names, self._only_for(files), False)
+            selected = verdict.select(self.milestones, names, self._only_for(None if reference else files), reference)
             progress.note = "packages found: %s" % (", ".join(names) or "none")
             self._expect(sub, len(selected))
             runnable = []
@@ -210,17 +208,22 @@ class Grader:
                     self._record(Verdict(sub.name, m, False, "the submission installs Python modules the course "
                                          "provides, which would replace them: %s (rename them)" % ", ".join(shadowed)))
                 return
+            unmade = {p.name: unbuilt.problems(p.path, p.name, os.path.join(ws, "devel"))
+                      for p in submissions.find_packages(os.path.join(ws, "src")) if p.name}
             for m in longest_first(runnable, self._durations):
                 hints = [h for p in packages if p.name in m.packages for h in script_problems(p.path)]
-                self._submit(self._run, sub, m, built.env, hints, ws, built.student_env)
+                first = [h for name in m.packages for h in unmade.get(name, [])]
+                self._submit(self._run, sub, m, built.env, hints, ws, built.student_env, first)
         except Exception:  # noqa: BLE001 - the grader's own failure is this submission's verdict
             self._fail_all(sub, selected or self.milestones[:1], "the grader failed on this submission:\n%s"
                            % traceback.format_exc(limit=5))
 
     def _run(self, sub: Submission, m: Milestone, env: Dict[str, str], hints: List[str], ws: Optional[str],
-             student_env: Optional[Dict[str, str]]) -> None:
+             student_env: Optional[Dict[str, str]], first: Sequence[str] = ()) -> None:
         """One milestone run: rostest (the master, the simulators, the check: trusted) with the
-        student's processes in a sandbox the check starts from the policy written here."""
+        student's processes in a sandbox the check starts from the policy written here. On a
+        failure, `first` (what the package holds but its build did not make: the cause to fix)
+        comes before the check's reason and `hints` after it, each only if the check did not say it."""
         try:
             artifacts = self._student_dir(sub.name, m.name)
             shutil.rmtree(artifacts, ignore_errors=True)
@@ -243,7 +246,8 @@ class Grader:
             reason = "" if passed else verdict.ENDED_BY_LIMIT if result.passed else result.summary()
             if not result.passed:
                 hints = hints + verdict.output_capped(artifacts)
-                reason = "\n".join([reason] + [h for h in hints if h not in reason])
+                reason = "\n".join([h for h in first if h.split(" (")[0] not in reason] + [reason]
+                                   + [h for h in hints if h not in reason])
             copy_logs(os.path.join(home, "log"), os.path.join(artifacts, "ros_log"))
             verdict.trim_files(artifacts)
             verdict.trim_files(run_dir, skip=home)  # the student's home is theirs: never written by us

@@ -3,8 +3,9 @@ milestone run (what the student's code may write, what it must not see).
 
 Paths: the overlay workspace `<out>/_work/<student>/ws` and each run's student home
 `<out>/_work/<student>/runs/<milestone>/student` are the only places student code writes; the
-grader's output folder (every student's verdicts and files), the class folder and the grader's
-home are hidden; the course checkout stays readable. Each run's trusted files (rostest's
+grader's output folder (every student's verdicts and files), the class folder, the grader's
+home and the checkout's reference solutions (`reference`: solutions/ and its overlay) are hidden;
+the rest of the course checkout stays readable. Each run's trusted files (rostest's
 ROS_HOME with the JUnit XML, the policy itself) are next to the student home, out of its view.
 """
 from __future__ import annotations
@@ -25,7 +26,7 @@ class SandboxPlan:
     """One grading's sandbox settings: the level (probed once), the user, and the paths."""
 
     def __init__(self, out: str, course_root: str, class_paths: Sequence[str] = (),
-                 user: Optional[str] = None) -> None:
+                 user: Optional[str] = None, reference: Sequence[str] = ()) -> None:
         self.user = user or os.environ.get(SANDBOX_USER_VAR, DEFAULT_USER)
         self.level = levels.detect(self.user)
         # Without PID namespaces, this grading's processes are told apart by their real group.
@@ -35,7 +36,8 @@ class SandboxPlan:
         home = os.path.expanduser("~")
         hidden = normalised([self.out, home, "/root", "/run/user"]
                             + [os.path.dirname(os.path.abspath(p)) for p in class_paths]
-                            + [os.path.abspath(p) for p in class_paths])
+                            + [os.path.abspath(p) for p in class_paths]
+                            + [os.path.realpath(p) for p in reference])
         # A hidden folder holding the course (the grader's home) still shows the course: the
         # sandbox mounts the deeper path last.
         self.hidden = [p for p in hidden if p not in ("/", self.course_root)]

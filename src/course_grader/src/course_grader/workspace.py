@@ -2,7 +2,11 @@
 `source <course>/devel/setup.bash; catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3`.
 
 The course workspace is the one this package runs from (found from this module's location,
-then CMAKE_PREFIX_PATH), never a hard-coded path.
+then CMAKE_PREFIX_PATH), never a hard-coded path. It holds the course's infrastructure only
+(turtlesim, the simulator, the course_* packages). The reference solutions live apart, in
+`<checkout>/solutions` (their own overlay `solutions_ws` for the instructor's tests): a grading
+runs in the course's environment alone (course_environment), and grades the reference as one
+more overlay, built and run like a student's.
 """
 from __future__ import annotations
 
@@ -11,6 +15,7 @@ import importlib.util
 import os
 import shlex
 import shutil
+import subprocess
 from typing import Dict, Iterable, List, NamedTuple, Optional, Sequence, Set
 
 from course_sandbox.run import capture_oneshot, run_oneshot
@@ -22,6 +27,12 @@ from course_grader.submissions import Package
 BUILD_TIMEOUT_S = 600.0
 PYTHON = "/usr/bin/python3"
 SETUP_ENV = "COURSE_WS_SETUP"  # override: the setup.bash of the course workspace
+# The reference solutions and their overlay, in the course checkout (absent from the student image).
+SOLUTIONS_DIR = "solutions"
+SOLUTIONS_WS = "solutions_ws"
+# Variables that list folders where ROS, CMake, Python, the loader or the shell look for things.
+PATH_LISTS = ("ROS_PACKAGE_PATH", "CMAKE_PREFIX_PATH", "PYTHONPATH", "LD_LIBRARY_PATH", "PKG_CONFIG_PATH",
+              "PATH", "ROSLISP_PACKAGE_DIRECTORIES", "CPATH")
 
 
 class BuildResult(NamedTuple):
@@ -78,6 +89,49 @@ def course_root(setup_bash: str) -> str:
     """The course checkout: the folder above the workspace whose devel/setup.bash this is (it
     holds the workspace, the venv and the sources the devel space links to)."""
     return os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(setup_bash))))
+
+
+def reference_folders(setup_bash: str) -> List[str]:
+    """The checkout's reference solutions and their overlay workspace (whether or not they exist)."""
+    root = course_root(setup_bash)
+    return [os.path.join(root, SOLUTIONS_DIR), os.path.join(root, SOLUTIONS_WS)]
+
+
+def reference_solutions(setup_bash: str) -> Optional[str]:
+    """The folder of the reference solutions, None where there are none (the student image)."""
+    folder = reference_folders(setup_bash)[0]
+    return folder if glob.glob(os.path.join(folder, "*", "package.xml")) else None
+
+
+def _inside(path: str, folders: Sequence[str]) -> bool:
+    real = os.path.realpath(path)
+    return any(real == f or real.startswith(f + os.sep) for f in folders)
+
+
+def without_folders(env: Dict[str, str], folders: Sequence[str]) -> Dict[str, str]:
+    """`env` with every entry of its folder lists (PATH_LISTS) that lies in one of `folders` dropped."""
+    real = [os.path.realpath(f) for f in folders]
+    clean = dict(env)
+    for var in PATH_LISTS:
+        if var in clean:
+            kept = [p for p in clean[var].split(os.pathsep) if p and not _inside(p, real)]
+            clean[var] = os.pathsep.join(kept)
+    return clean
+
+
+def course_environment(setup_bash: str, env: Optional[Dict[str, str]] = None) -> Dict[str, str]:
+    """The environment of the course workspace alone: `env` (default: this process's) with the
+    course's setup.bash sourced the way a user does, which takes back what any other catkin
+    workspace sourced before it had added (the reference overlay of `make test`), then with any
+    entry left in the reference folders dropped. A student's build and processes, the checks and
+    the grader itself run in it: no reference package is on any of their paths."""
+    base = dict(os.environ if env is None else env)
+    command = "source %s >/dev/null 2>&1 || exit 3; exec env -0" % shlex.quote(setup_bash)
+    done = subprocess.run(["bash", "-c", command], env=base, stdout=subprocess.PIPE,
+                          stderr=subprocess.DEVNULL, stdin=subprocess.DEVNULL, check=False)
+    if done.returncode != 0:
+        raise RuntimeError("sourcing %s failed (exit code %d)" % (setup_bash, done.returncode))
+    return without_folders(parse_env(done.stdout), reference_folders(setup_bash))
 
 
 def trusted_base_env() -> Dict[str, str]:

@@ -2,6 +2,7 @@
 submission gets one verdict per selected milestone, a results.json and one progress line,
 whatever goes wrong with another submission."""
 import json
+import os
 
 from course_milestones.milestone import Milestone
 from course_testkit.rostest_runner import RostestResult
@@ -88,13 +89,20 @@ def test_a_first_grading_into_a_fresh_out_starts_the_longest_runs_first(tmp_path
     def recording_rostest(pkg, test_file, **kwargs):
         started.append(test_file)
         return _fake_rostest(pkg, test_file, **kwargs)
+    built = []
     monkeypatch.setattr(runner, "run_rostest", recording_rostest)
     monkeypatch.setenv("COURSE_SANDBOX_LEVEL", "none")
     monkeypatch.setattr(workspace, "course_setup", lambda: "/nowhere/setup.bash")
+    monkeypatch.setattr(workspace, "course_packages", lambda: {"turtlesim"})
+    monkeypatch.setattr(workspace, "course_site", lambda setup: "")
+    monkeypatch.setattr(workspace, "build", lambda ws, *args: built.append(sorted(os.listdir(os.path.join(ws, "src"))))
+                        or BuildResult(True, "", "", {"PATH": "/usr/bin"}))
     assert TYPICAL_S["checkpoint1"] > TYPICAL_S["chatter"]
     grader = runner.Grader([CHATTER, CP1], runner.Options(str(tmp_path / "out"), jobs=1), say=lambda line: None)
-    grader.grade([Submission(runner.REFERENCE, "")], reference=True)
+    reference = _folder(tmp_path, "solutions", ["chatter", "my_chatter"])
+    grader.grade([Submission(runner.REFERENCE, reference.path)], reference=True)
     assert started == ["checkpoint1.test", "chatter.test"]
+    assert built == [["chatter", "my_chatter"]]  # the reference is an overlay, built as a student's is
 
 
 def test_default_jobs_are_three_per_core_within_the_memory(tmp_path):

@@ -66,6 +66,17 @@ def chmod_hint(pkg: str) -> str:
     return " (%s)" % "; ".join(problems) if problems else ""
 
 
+def unbuilt_problems(pkg: str) -> List[str]:
+    """What `pkg` holds but the space that built it did not make (course_milestones.unbuilt): its
+    messages, services and actions without generated code, its Python modules not installed."""
+    from course_milestones import messages, unbuilt  # messages needs genmsg: only when asked
+    try:
+        folder = package_dir(pkg)
+    except rospkg.ResourceNotFound:
+        return []
+    return unbuilt.problems(folder, pkg, messages.built_space(pkg) or os.devnull)
+
+
 def describe(names: Sequence[str]) -> str:
     """A short list of executable names for messages to the student."""
     return ", ".join(os.path.basename(n) for n in names) or "(none)"

@@ -10,8 +10,11 @@ likes (catkin's devel-space shim execs it). So here:
   usual, but only when `import <pkg>` would load it from the system's Python folders or the course
   workspace's own (found without importing anything: an overlay that shadows a package is seen);
 - any other type is built from its definition files (`<pkg>/msg/<Type>.msg`, `srv/<Type>.srv`,
-  found with rospkg and catkin as rosmsg finds them, action messages in devel/share included):
-  genmsg parses them and computes the md5 and the full text, genpy generates the class.
+  found with rospkg as rosmsg finds them, action messages in devel/share included):
+  genmsg parses them and computes the md5 and the full text, genpy generates the class. It
+  counts as built only when the space that built that very package (built_space: found by path
+  from the package's folder) holds its generated module; a module of the same name that an
+  import would find first, from another workspace, never stands in for it.
 
 The definitions are the student's, so they are data to check before genpy turns them into code:
 genpy pastes names and constant values into Python source (genmsg does not even check a
@@ -23,6 +26,7 @@ message is a sentence for the student; a check never crashes on a definition.
 """
 from __future__ import annotations
 
+import glob
 import importlib
 import importlib.util
 import math
@@ -41,7 +45,6 @@ import genmsg.msg_loader
 import genmsg.msgs
 import genpy.dynamic
 import rospkg
-from catkin.find_in_workspaces import find_in_workspaces
 
 # Limits on what a definition may make us do (a class is built in the check's own process).
 MAX_DEFINITION_BYTES = 64 * 1024      # one .msg/.srv file
@@ -215,9 +218,42 @@ def _rospack() -> rospkg.RosPack:
     return rospkg.RosPack()
 
 
+def built_space(pkg: str) -> Optional[str]:
+    """The devel (or install) space that built the package ROS finds for `pkg`, found by path: the
+    first CMAKE_PREFIX_PATH entry with a catkin marker whose source folders (devel/.catkin) hold
+    the package's folder, or that holds it itself (an install space's share/<pkg>). None when no
+    workspace on the path built that package: it is a folder on ROS_PACKAGE_PATH, not built.
+    This, and never the module an import would find first, is where its generated code must be:
+    a package of the same name elsewhere (another workspace) cannot stand in for it."""
+    try:
+        folder = os.path.realpath(_rospack().get_path(pkg))
+    except (rospkg.ResourceNotFound, OSError):
+        return None
+    for prefix in os.environ.get("CMAKE_PREFIX_PATH", "").split(os.pathsep):
+        marker = os.path.join(prefix, ".catkin")
+        if not prefix or not os.path.isfile(marker):
+            continue
+        try:
+            with open(marker) as f:
+                sources = [s for s in f.read().split(";") if s.strip()]
+        except (OSError, UnicodeDecodeError):
+            continue
+        if any(_under(folder, (os.path.realpath(s.strip()),)) for s in sources + [prefix]):
+            return prefix
+    return None
+
+
+def _built_python(pkg: str) -> List[str]:
+    """The Python folders of `pkg` in the space that built it (see built_space)."""
+    space = built_space(pkg)
+    if space is None:
+        return []
+    return sorted(glob.glob(os.path.join(space, "lib", "python3*", "*-packages", pkg)))
+
+
 def definition_path(pkg: str, base: str, kind: str = "msg") -> Optional[str]:
     """The `.msg`/`.srv` file of `pkg/base` as rosmsg finds it: in the package's folder, else in
-    its share folder of the first workspace that has one (where add_action_files puts the action's
+    the share folder of the space that built the package (where add_action_files puts the action's
     messages); None when there is none (or the names are not a package's and a type's)."""
     if not (_NAME.match(pkg) and _NAME.match(base)) or kind not in ("msg", "srv"):
         return None
@@ -226,7 +262,9 @@ def definition_path(pkg: str, base: str, kind: str = "msg") -> Optional[str]:
         folders.append(_rospack().get_path(pkg))
     except rospkg.ResourceNotFound:
         pass
-    folders += find_in_workspaces(["share"], project=pkg, first_matching_workspace_only=True)
+    space = built_space(pkg)
+    if space is not None:
+        folders.append(os.path.join(space, "share", pkg))
     for folder in folders:
         path = os.path.join(folder, kind, "%s.%s" % (base, kind))
         if os.path.isfile(path):
@@ -266,20 +304,18 @@ def definition_text(msg_type: str) -> Optional[str]:
 
 
 def generated_module_exists(pkg: str, base: str, kind: str = "msg") -> bool:
-    """Whether the package Python would import for `pkg` has the generated `<kind>/_<base>.py`
-    (what roslib would import), found without importing anything."""
-    try:
-        spec = importlib.util.find_spec(pkg) if pkg not in sys.modules else sys.modules[pkg].__spec__
-    except (ImportError, ValueError):
-        return False
-    places = list(getattr(spec, "submodule_search_locations", None) or [])
-    return any(os.path.isfile(os.path.join(p, kind, "_%s.py" % base)) for p in places)
+    """Whether the space that built `pkg` (built_space) has its generated `<kind>/_<base>.py`,
+    found by path, without importing anything."""
+    return any(os.path.isfile(os.path.join(p, kind, "_%s.py" % base)) for p in _built_python(pkg))
 
 
 def _from_files(kind: str, pkg: str, base: str) -> type:
     type_name = "%s/%s" % (pkg, base)
+    if built_space(pkg) is None:
+        raise NotBuilt("%s/%s is not built: no workspace on the path built package %s" % (pkg, base, pkg))
     if not generated_module_exists(pkg, base, kind):
-        raise NotBuilt("%s/%s is not built (no generated Python module %s/%s/_%s.py)" % (pkg, base, pkg, kind, base))
+        raise NotBuilt("%s/%s is not built (no generated Python module %s/%s/_%s.py in %s)"
+                       % (pkg, base, pkg, kind, base, built_space(pkg)))
     path = definition_path(pkg, base, kind)
     if path is None:
         raise NotBuilt("%s/%s has no definition (no %s/%s/%s.%s in package %s)" % (pkg, base, pkg, kind, base, kind,
@@ -516,4 +552,4 @@ def _closure(name: str, specs: Dict[str, object]) -> Set[str]:
 
 __all__ = ["InterfaceError", "NotBuilt", "message_class", "service_class", "service_class_by_name",
            "message_class_from_text", "service_class_from_text", "imports_safely", "definition_path",
-           "read_definition", "definition_text", "generated_module_exists", "trusted_path", "forget", "genpy"]
+           "read_definition", "definition_text", "generated_module_exists", "built_space", "trusted_path", "forget", "genpy"]

@@ -5,8 +5,10 @@ talk to the student's nodes); a package whose __init__.py has a side effect is n
 a definition made to run code when pasted into genpy's source runs nothing; and any definition
 text gives a class or an InterfaceError sentence, never another exception."""
 import importlib
+import importlib.util
 import io
 import os
+import shutil
 import subprocess
 import sys
 import uuid
@@ -80,11 +82,14 @@ def student_package(tmp_path, monkeypatch):
     (root / "msg" / "Thing.msg").write_text(THING)
     (root / "msg" / "Other.msg").write_text(OTHER)
     (root / "srv" / "Ask.srv").write_text(ASK)
-    site = tmp_path / "site"
+    devel = tmp_path / "devel"  # a devel space: its marker names the source folder it built
+    site = devel / "lib" / "python3" / "dist-packages"
     generate_with_genpy(pkg, str(root / "msg"), str(root / "srv"), str(site))
+    (devel / ".catkin").write_text(str(tmp_path / "src"))
     marker = tmp_path / "imported"
     (site / pkg / "__init__.py").write_text("open(%r, 'w').write('imported')\n" % str(marker))
     monkeypatch.setenv("ROS_PACKAGE_PATH", "%s:%s" % (tmp_path / "src", os.environ.get("ROS_PACKAGE_PATH", "")))
+    monkeypatch.setenv("CMAKE_PREFIX_PATH", "%s:%s" % (devel, os.environ.get("CMAKE_PREFIX_PATH", "")))
     monkeypatch.syspath_prepend(str(site))
     importlib.invalidate_caches()
     yield pkg, marker
@@ -130,6 +135,31 @@ def test_built_check_and_missing_definitions(student_package, tmp_path):
         messages.message_class("%s/Unbuilt" % pkg)
     os.remove(tmp_path / "src" / pkg / "msg" / "Other.msg")  # built, but a definition it uses is gone
     with pytest.raises(messages.InterfaceError, match="%s/Other" % pkg):
+        messages.message_class("%s/Thing" % pkg)
+    assert not marker.exists()
+
+
+def test_a_same_named_package_built_elsewhere_never_stands_in(student_package, tmp_path, monkeypatch):
+    """The student's overlay holds `pkg` with Thing.msg but never generated it (no
+    add_message_files); another workspace (the reference) built a package of the same name, and
+    its module is what `import pkg.msg` would find first. Judged by path: not built."""
+    pkg, marker = student_package
+    overlay = tmp_path / "overlay"
+    (overlay / "src").mkdir(parents=True)
+    shutil.copytree(tmp_path / "src" / pkg, overlay / "src" / pkg)
+    (overlay / "devel" / "lib" / "python3" / "dist-packages" / pkg).mkdir(parents=True)
+    (overlay / "devel" / ".catkin").write_text(str(overlay / "src"))
+    monkeypatch.setenv("ROS_PACKAGE_PATH", "%s:%s" % (overlay / "src", os.environ["ROS_PACKAGE_PATH"]))
+    monkeypatch.setenv("CMAKE_PREFIX_PATH", "%s:%s" % (overlay / "devel", os.environ["CMAKE_PREFIX_PATH"]))
+    messages.forget()
+    assert messages.built_space(pkg) == str(overlay / "devel")
+    assert importlib.util.find_spec(pkg) is not None  # the other workspace's module is importable
+    with pytest.raises(messages.NotBuilt, match="no generated Python module %s/msg/_Thing.py in %s"
+                       % (pkg, overlay / "devel")):
+        messages.message_class("%s/Thing" % pkg)
+    (overlay / "devel" / ".catkin").unlink()  # a package folder no workspace on the path built
+    messages.forget()
+    with pytest.raises(messages.NotBuilt, match="no workspace on the path built package %s" % pkg):
         messages.message_class("%s/Thing" % pkg)
     assert not marker.exists()
 

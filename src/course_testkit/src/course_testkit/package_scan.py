@@ -13,13 +13,15 @@ RUN_TAGS = ("depend", "exec_depend", "run_depend")
 INTERFACE_MODULES = ("msg", "srv", "action")
 
 
-def packages(src: str) -> Dict[str, str]:
-    """name -> folder of every package directly under `src`."""
+def packages(*srcs: str) -> Dict[str, str]:
+    """name -> folder of every package directly under each of `srcs` (the course's src/ and the
+    reference solutions' solutions/, say)."""
     found = {}
-    for entry in sorted(os.listdir(src)):
-        manifest = os.path.join(src, entry, "package.xml")
-        if os.path.isfile(manifest):
-            found[ET.parse(manifest).getroot().findtext("name")] = os.path.join(src, entry)
+    for src in srcs:
+        for entry in sorted(os.listdir(src)):
+            manifest = os.path.join(src, entry, "package.xml")
+            if os.path.isfile(manifest):
+                found[ET.parse(manifest).getroot().findtext("name")] = os.path.join(src, entry)
     return found
 
 

@@ -2,8 +2,9 @@
 """The course image and the Gradescope autograder tried in real OCI containers, built and run by
 Debian's podman (as root: this machine's podman needs runc, cgroupfs and no default ulimits).
 
-    sudo python3 tools/podman_check.py image                 # base image (once) + docker/Dockerfile
-    sudo python3 tools/podman_check.py docker-check          # image, its CMD (the demo), make test
+    sudo python3 tools/podman_check.py image                 # base image (once) + docker/Dockerfile's two images
+    sudo python3 tools/podman_check.py docker-check          # both images: the demo, no answers in the
+                                                             # student's; make grade and make test in the instructor's
     sudo python3 tools/podman_check.py autograder-check ZIP  # Gradescope's way, in containers
 
 No image registry is reachable here, so `debian:bookworm` is imported once from a debootstrap
@@ -33,7 +34,8 @@ from typing import Dict, List, Optional, Sequence, Tuple
 ROOT = Path(__file__).resolve().parents[1]
 PODMAN = ["podman", "--runtime", "runc", "--cgroup-manager=cgroupfs"]
 BASE_IMAGE = "debian:bookworm"
-COURSE_IMAGE = "localhost/ros-course"
+COURSE_IMAGE = "localhost/ros-course"  # the student image (the Dockerfile's default target)
+INSTRUCTOR_IMAGE = "localhost/ros-course-instructor"  # --target instructor: with the reference solutions
 AUTOGRADER_IMAGE = "localhost/ros-course-autograder"
 CONTAINERS_CONF = Path("/etc/containers/containers.conf")
 HOST_CA = Path("/etc/ssl/certs/ca-certificates.crt")
@@ -43,6 +45,7 @@ PACKAGES = ("podman", "runc", "debootstrap")
 AUTOGRADER_SAMPLES = (("lab2_chatter_scripts", "correct", True), ("bad_crash", "buggy", False),
                       ("bad_build_error", "does not build", False), ("attack_forge_results", "attack", False))
 VISIBILITY = {"hidden", "after_due_date", "after_published", "visible"}
+MIN_ANSWER_BYTES = 64  # smaller files (an empty __init__.py, a one-line .msg) are common to any package
 
 
 class Unavailable(Exception):
@@ -155,8 +158,53 @@ def network_mounts(scratch: Path) -> List[str]:
 
 
 def build_course_image(scratch: Path, log: Path) -> None:
-    podman("build", "--network", "host", *network_mounts(scratch), "-f", str(ROOT / "docker" / "Dockerfile"),
-           "-t", COURSE_IMAGE, str(ROOT), log=log)
+    """Both images of docker/Dockerfile: the instructor's (a target), then the student's (the default)."""
+    for target in ("instructor", None):
+        podman("build", "--network", "host", *network_mounts(scratch), "-f", str(ROOT / "docker" / "Dockerfile"),
+               *(["--target", target] if target else []), "-t", INSTRUCTOR_IMAGE if target else COURSE_IMAGE,
+               str(ROOT), log=log)
+
+
+def reference_fingerprints() -> Dict[str, str]:
+    """sha256 -> path of every file of the reference solutions (and the graded samples, which hold
+    correct answers too) that says something: files of a few bytes (an empty __init__.py) are left out."""
+    import hashlib
+    found = {}
+    for top in (ROOT / "solutions", ROOT / "tests" / "submissions"):
+        for path in sorted(top.rglob("*")):
+            if path.is_file() and not path.is_symlink() and "__pycache__" not in path.parts \
+                    and path.stat().st_size >= MIN_ANSWER_BYTES:
+                found[hashlib.sha256(path.read_bytes()).hexdigest()] = str(path.relative_to(ROOT))
+    return found
+
+
+def answers_in_image(image: str, log: Path) -> List[str]:
+    """The files of `image` that are a reference solution's (by content, anywhere in its file
+    system) or a package.xml naming a reference package; [] for an image without the answers."""
+    names = sorted(p.parent.name for p in (ROOT / "solutions").glob("*/package.xml"))
+    script = ("find / -xdev -type f -size -4M -size +%dc -print0 | xargs -0 sha256sum; "
+              "find / -xdev -name package.xml -print0 | xargs -0 grep -l -E '<name>(%s)</name>' | sed 's/^/xml /'"
+              % (MIN_ANSWER_BYTES - 1, "|".join(names)))
+    done = podman("run", "--rm", "--network", "none", "--user", "root", "--entrypoint", "bash", image, "-c", script,
+                  check=False, stdout=subprocess.PIPE, text=True)
+    log.write_text(done.stdout)
+    fingerprints = reference_fingerprints()
+    found = []
+    for line in done.stdout.splitlines():
+        digest, _, path = line.partition("  ")
+        if digest == "xml":
+            found.append("%s names a reference package" % path)
+        elif digest in fingerprints:
+            found.append("%s is %s" % (path, fingerprints[digest]))
+    return found
+
+
+def student_image_has_no_answers(log: Path) -> bool:
+    found = answers_in_image(COURSE_IMAGE, log)
+    control = answers_in_image(INSTRUCTOR_IMAGE, log.with_suffix(".instructor.log"))
+    print("answers in the student image: %d file(s)%s; in the instructor's (the control): %d"
+          % (len(found), "".join("\n  " + f for f in found[:20]), len(control)), flush=True)
+    return not found and bool(control)
 
 
 def run_in_image(image: str, command: Sequence[str], log: Path, extra: Sequence[str] = ()) -> int:
@@ -179,13 +227,20 @@ def docker_check(opts: argparse.Namespace, steps: Steps, scratch: Path, logs: Pa
     code = steps.run("demo (the image's CMD, as user student)", run_in_image, COURSE_IMAGE, [], logs / "demo.log")
     print("demo: exit %s; %s" % (code, last_line(logs / "demo.log", r"\S")), flush=True)
     ok &= code == 0
+    ok &= steps.run("no reference solution in the student image", student_image_has_no_answers,
+                    logs / "answers.log")
     ok &= steps.run("lab page through a published port", lab_check, logs / "lab.log")
+    code = steps.run("make grade (the reference) in the instructor image, as user student", run_in_image,
+                     INSTRUCTOR_IMAGE, ["make", "grade", "GRADES=/tmp/grades"], logs / "grade-reference.log")
+    print("make grade: exit %s; %s" % (code, last_line(logs / "grade-reference.log", r"^\[1/1\] reference")),
+          flush=True)
+    ok &= code == 0
     if opts.grade_class:
         ok &= steps.run("make grade of %s in a container, as root" % opts.grade_class, grade_class,
                         Path(opts.grade_class).resolve(), scratch, logs / "grade.log")
     if not opts.skip_test:
-        code = steps.run("make test in a container, as user student", run_in_image, COURSE_IMAGE, ["make", "test"],
-                         logs / "test.log")
+        code = steps.run("make test in the instructor image, as user student", run_in_image, INSTRUCTOR_IMAGE,
+                         ["make", "test"], logs / "test.log")
         print("make test: exit %s; %s" % (code, last_line(logs / "test.log", r"passed|failed|error")), flush=True)
         ok &= code == 0
     return ok
@@ -195,7 +250,7 @@ def grade_class(folder: Path, scratch: Path, log: Path) -> bool:
     """A TA's `make grade` in the image: the class folder read-only, the grades folder writable."""
     grades = scratch / "grades"
     grades.mkdir()
-    code = run_in_image(COURSE_IMAGE, ["make", "grade", "SUBMISSIONS=/class", "GRADES=/grades"], log,
+    code = run_in_image(INSTRUCTOR_IMAGE, ["make", "grade", "SUBMISSIONS=/class", "GRADES=/grades"], log,
                         ["--user", "root", "-v", "%s:/class:ro" % folder, "-v", "%s:/grades" % grades])
     gradebook = grades / "gradebook.csv"
     rows = gradebook.read_text().splitlines()[1:] if gradebook.exists() else []

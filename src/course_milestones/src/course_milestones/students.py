@@ -262,6 +262,18 @@ def start_and_wait(command: Sequence[str], wanted: Callable[[Registration], bool
         time.sleep(0.1)
 
 
+class Attempt(str):
+    """What a started executable did, in words; `left`: it did register what was asked, then
+    stopped (the cause to tell first: the rest of a failure message follows from it)."""
+    left = False
+
+
+def _left(text: str) -> Attempt:
+    attempt = Attempt(text)
+    attempt.left = True
+    return attempt
+
+
 def describe_attempt(name: str, keyboard: PtyKeyboard, seen: Sequence[Registration],
                      earlier: Sequence[Registration] = (), wanted: Optional[Callable[[Registration], bool]] = None,
                      ) -> str:
@@ -275,8 +287,10 @@ def describe_attempt(name: str, keyboard: PtyKeyboard, seen: Sequence[Registrati
     if did and not any(wanted(r) for r in seen):
         what = "%s (node %s)" % (registered_words(did[0]), did[0].node)
         if running:
-            return "%s %s, then unregistered it while still running: %s" % (name, what, ONE_MESSAGE)
-        return "%s %s, then %s" % (name, what, ended)
+            stopped = "stopped listening" if own_names(did[0].subscribes) \
+                and not own_names(did[0].publishes + did[0].services) else "unregistered it"
+            return _left("%s %s, then %s while still running: %s" % (name, what, stopped, ONE_MESSAGE))
+        return _left("%s %s, then %s" % (name, what, ended))
     if seen:
         names = sorted({n for r in seen for n in own_names(r.publishes + r.subscribes + r.services)})
         words = "%s registered %s (%s)" % (name, ", ".join(r.node for r in seen), ", ".join(names) or "no topics")
@@ -301,6 +315,11 @@ def not_found_message(pkg: str, what: str, tried: Sequence[str]) -> str:
     executables = list_executables(pkg)
     if not executables:
         return "package %s has no executable script (is it chmod +x, in scripts/ or nodes/?)" % pkg
+    left = [t for t in tried if getattr(t, "left", False)]
+    if left:  # it did what was asked, then stopped: that is the cause, said first
+        others = [t for t in tried if t not in left]
+        return "%s; so no executable in package %s %s any more (found: %s%s)" % (
+            "; ".join(left), pkg, what, describe_names(executables), "".join("; " + t for t in others))
     return "no executable in package %s %s (found: %s; %s)" % (pkg, what, describe_names(executables),
                                                                 "; ".join(tried))
 

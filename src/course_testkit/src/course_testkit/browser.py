@@ -11,6 +11,8 @@ from typing import Iterator, Tuple
 
 import pytest
 
+from course_testkit.isolation import port_below_ephemeral_range
+
 TIMEOUT_S = 60.0
 WINDOW = (1280, 1400)
 ARGUMENTS = ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
@@ -34,7 +36,9 @@ def chromium(window: Tuple[int, int] = WINDOW, timeout: float = TIMEOUT_S) -> It
     options.binary_location = shutil.which("chromium")
     for argument in ARGUMENTS + ("--window-size=%d,%d" % window,):
         options.add_argument(argument)
-    driver = webdriver.Chrome(service=ChromeService(executable_path=shutil.which("chromedriver")), options=options)
+    # chromedriver binds the port it is given: one no ROS node of a test beside can take first.
+    service = ChromeService(executable_path=shutil.which("chromedriver"), port=port_below_ephemeral_range())
+    driver = webdriver.Chrome(service=service, options=options)
     try:
         driver.set_page_load_timeout(timeout)
         driver.set_script_timeout(timeout)

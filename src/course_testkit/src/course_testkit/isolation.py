@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import functools
 import os
+import random
 import resource
 import signal
 import socket
@@ -43,6 +44,29 @@ def free_port(host: str = "127.0.0.1") -> int:
     with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as sock:
         sock.bind((host, 0))
         return sock.getsockname()[1]
+
+
+def port_below_ephemeral_range(host: str = "127.0.0.1", ranges: str = "/proc/sys/net/ipv4/ip_local_port_range",
+                               lowest: int = 20000) -> int:
+    """A free TCP port below the kernel's ephemeral range, for a server that must be told its port
+    before it binds (chromedriver): a port the kernel picked (free_port) can be handed to any
+    process that binds port 0 in between, a ROS node of a test running beside, and a client then
+    talks to that process instead. Below the range, only a process that names the port takes it."""
+    try:
+        with open(ranges) as f:
+            first = int(f.read().split()[0])
+    except (OSError, ValueError, IndexError):
+        first = 32768
+    candidates = list(range(lowest, max(lowest + 1, first)))
+    random.shuffle(candidates)
+    for port in candidates:
+        with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as sock:
+            try:
+                sock.bind((host, port))
+            except OSError:
+                continue
+            return port
+    return free_port(host)
 
 
 def pids_with_token(token: str) -> List[int]:

@@ -30,6 +30,19 @@ def test_free_port_is_bindable():
         sock.bind(("127.0.0.1", port))
 
 
+def test_a_port_below_the_ephemeral_range_is_free_and_out_of_the_kernels_picks(tmp_path):
+    ranges = tmp_path / "ip_local_port_range"
+    ranges.write_text("40000\t60999\n")
+    ports = {isolation.port_below_ephemeral_range(ranges=str(ranges), lowest=39990) for _ in range(20)}
+    assert ports <= set(range(39990, 40000))
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", ports.pop()))
+    with socket.socket() as taken:  # the only port left below the range is taken: the kernel's pick
+        taken.bind(("127.0.0.1", 39999))
+        ranges.write_text("40000 60999\n")
+        assert isolation.port_below_ephemeral_range(ranges=str(ranges), lowest=39999) != 39999
+
+
 def test_token_kill_reaches_a_setsid_double_forked_process():
     token = isolation.new_token()
     proc = subprocess.Popen([sys.executable, "-c", ESCAPER], env=isolation.token_env(dict(os.environ), token),

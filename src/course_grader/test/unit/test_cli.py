@@ -16,3 +16,11 @@ def test_list_and_unknown_milestones(capsys):
     assert main(["--list"]) == 0
     assert "chatter" in capsys.readouterr().out
     assert main(["--only", "no_such_milestone"]) == 2
+
+
+def test_without_submissions_or_reference_solutions_it_says_so(capsys, monkeypatch, tmp_path):
+    """The student image has no solutions/: `make grade` alone has nothing to grade."""
+    from course_grader import workspace
+    monkeypatch.setattr(workspace, "reference_solutions", lambda setup: None)
+    assert main(["--out", str(tmp_path / "grades")]) == 2
+    assert "no reference solutions" in capsys.readouterr().err

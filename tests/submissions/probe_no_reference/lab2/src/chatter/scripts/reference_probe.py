@@ -1,0 +1,30 @@
+"""Imported first by this sample's talker: where the course's reference solutions show through to
+a student's process (a package ROS finds, a module Python imports, a path in the environment, the
+folder itself), it says what it saw and exits, so the talker never publishes and the milestone fails."""
+import importlib.util
+import os
+import subprocess
+import sys
+
+PACKAGES = {"my_chatter", "lab2_turtlesim", "turtle_patrol", "mybot_teleop", "mybot_color", "two_turtles",
+            "my_pkg", "my_robot_controller", "pkg_param", "pkg_interfaces", "pkg_tf", "pkg_metapackage"}
+MODULES = ("my_chatter", "turtle_patrol", "pkg_interfaces", "my_pkg", "mybot_color_core", "mybot_teleop_core")
+
+
+def seen():
+    listed = subprocess.run(["rospack", "list-names"], stdout=subprocess.PIPE, universal_newlines=True).stdout
+    found = ["package %s" % p for p in sorted(PACKAGES & set(listed.split()))]
+    found += ["module %s" % m for m in MODULES if importlib.util.find_spec(m) is not None]
+    found += ["%s=%s" % (k, v) for k, v in sorted(os.environ.items()) if "solutions" in v]
+    for entry in os.environ.get("ROS_PACKAGE_PATH", "").split(os.pathsep):
+        for folder in ("solutions", "solutions_ws"):
+            path = os.path.join(os.path.dirname(os.path.dirname(entry)), folder)
+            if entry and os.path.isdir(path) and os.listdir(path):
+                found.append("folder %s" % path)
+    return found
+
+
+LEAKS = seen()
+if LEAKS:
+    sys.stderr.write("the reference solutions show through: %s\n" % "; ".join(LEAKS))
+    sys.exit(3)

@@ -72,13 +72,13 @@ bench-grade: build
 # docker/Dockerfile built and run by podman (root): the demo, then make test in a container; each
 # step's time. DOCKER_CHECK_ARGS="--skip-test" or "--rebuild". See tools/podman_check.py.
 docker-check:
-	@python3 $(ROOT)/tools/podman_check.py docker-check $(DOCKER_CHECK_ARGS)
+	@/usr/bin/python3 $(ROOT)/tools/podman_check.py docker-check $(DOCKER_CHECK_ARGS)
 
 # The Gradescope autograder as Gradescope runs it: setup.sh as root in a fresh container of the base
 # image, then run_autograder on a correct, a buggy, a non-building and an attack submission.
 autograder-check:
 	@$(MAKE) --no-print-directory autograder MILESTONES=chatter
-	@python3 $(ROOT)/tools/podman_check.py autograder-check $(ROOT)/autograder.zip
+	@/usr/bin/python3 $(ROOT)/tools/podman_check.py autograder-check $(ROOT)/autograder.zip
 
 clean:
 	rm -rf $(WS)/build $(WS)/devel $(WS)/build.log $(SOLUTIONS_WS)/build $(SOLUTIONS_WS)/devel $(SOLUTIONS_WS)/build.log

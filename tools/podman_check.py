@@ -169,13 +169,14 @@ def reference_fingerprints() -> Dict[str, str]:
     """sha256 -> path of every file of the reference solutions (and the graded samples, which hold
     correct answers too) that says something: files of a few bytes (an empty __init__.py) are left out."""
     import hashlib
-    found = {}
-    for top in (ROOT / "solutions", ROOT / "tests" / "submissions"):
-        for path in sorted(top.rglob("*")):
-            if path.is_file() and not path.is_symlink() and "__pycache__" not in path.parts \
-                    and path.stat().st_size >= MIN_ANSWER_BYTES:
-                found[hashlib.sha256(path.read_bytes()).hexdigest()] = str(path.relative_to(ROOT))
-    return found
+
+    def files(top: Path) -> Dict[str, str]:
+        return {hashlib.sha256(p.read_bytes()).hexdigest(): str(p.relative_to(ROOT)) for p in sorted(top.rglob("*"))
+                if p.is_file() and not p.is_symlink() and "__pycache__" not in p.parts
+                and p.stat().st_size >= MIN_ANSWER_BYTES}
+    course = files(ROOT / "src")  # a sample may copy a course file (an attack replacing course_testkit)
+    found = {**files(ROOT / "solutions"), **files(ROOT / "tests" / "submissions")}
+    return {digest: path for digest, path in found.items() if digest not in course}
 
 
 def answers_in_image(image: str, log: Path) -> List[str]:

@@ -218,9 +218,12 @@ def demo(flavour: str, launch: str, env: Dict[str, str]) -> Demo:
         roslaunch = NodeProcess(["roslaunch", "turtle_tf2", launch], stdin=subprocess.DEVNULL, env=master.env,
                                 log_path=str(master.home / "roslaunch.log"))
         master.nodes.append(roslaunch)
-        ours = wait_for(lambda: any(name.endswith("/snapshot") for name, _ in (system_state(master.uri) or [[], [], []])[2])
-                        or not roslaunch.running(), START_TIMEOUT_S, 0.2)
-        if not ours or not roslaunch.running():
+        def ours_up() -> bool:  # only our turtlesim has ~snapshot
+            services = (system_state(master.uri) or [[], [], []])[2]
+            return any(name.endswith("/snapshot") for name, _ in services)
+
+        wait_for(lambda: ours_up() or not roslaunch.running(), START_TIMEOUT_S, 0.2)
+        if not ours_up() or not roslaunch.running():
             return Demo(flavour, launch, False, "our turtlesim (its ~snapshot service) did not come up:\n"
                         + roslaunch.output()[-2000:], [], time.monotonic() - start)
         measured = subprocess.run([sys.executable, str(Path(__file__).resolve()), "--probe"], env=master.env,

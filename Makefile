@@ -80,5 +80,17 @@ autograder-check:
 	@$(MAKE) --no-print-directory autograder MILESTONES=chatter
 	@/usr/bin/python3 $(ROOT)/tools/podman_check.py autograder-check $(ROOT)/autograder.zip
 
+# ROS 1's own tutorials as an overlay on this workspace: built, their tests run, turtle_tf2's demos
+# (Python and C++) against our turtlesim. TUTORIALS=DIR holds ros_tutorials, geometry_tutorials and
+# common_tutorials (sources, never committed); not part of make test. See docs/noetic_cxx.md.
+.PHONY: tutorials-check
+ifneq ($(filter tutorials-check,$(MAKECMDGOALS)),)
+ifeq ($(TUTORIALS),)
+$(error make tutorials-check TUTORIALS=DIR: the folder holding ros_tutorials, geometry_tutorials, common_tutorials)
+endif
+endif
+tutorials-check: build
+	@$(ROSENV) cd $(ROOT) && python3 tools/tutorials_check.py $(abspath $(TUTORIALS)) $(TUTORIALS_CHECK_ARGS)
+
 clean:
 	rm -rf $(WS)/build $(WS)/devel $(WS)/build.log $(SOLUTIONS_WS)/build $(SOLUTIONS_WS)/devel $(SOLUTIONS_WS)/build.log

@@ -4,7 +4,10 @@ First the compiler's and the linker's own error lines (each undefined reference 
 with paths as the student knows them (`my_pkg/src/node.cpp:14:14`, not the grader's workspace
 path), then a one-line hint for the mistakes students make most (a target not linked with
 `${catkin_LIBRARIES}`, a package find_package cannot find, a header of the package's own
-messages compiled before it is generated), then CMake's, catkin's and Python's own errors.
+messages compiled before it is generated) and for code written for ROS Noetic that Debian 12
+still does not compile (docs/noetic_cxx.md: a bind placeholder `_1` ambiguous or undeclared,
+ROS_INFO without ros/console.h, a C++14 `throw(...)` under GCC 12's C++17), then CMake's,
+catkin's and Python's own errors.
 Warnings are never shown as the reason: they never fail a build.
 """
 from __future__ import annotations
@@ -30,6 +33,37 @@ _MAKE_FAILED = re.compile(r"^make\[\d+\]: \*\*\* \[(?P<package>[^\s:\]]*?)/?CMak
 _LINKER_DONE = re.compile(r"^collect2: error: ld returned")
 _NO_PACKAGE = re.compile(r'Could not find a package configuration file provided by\s+"(?P<package>[^"]+)"')
 _MESSAGE_PACKAGE = re.compile(r"^-- (?P<package>[\w-]+): \d+ messages, \d+ services", re.MULTILINE)
+# g++ quotes names with ‘’ in a UTF-8 locale and with '' in the C locale.
+_Q = "[‘']"
+_EQ = "[’']"
+# Compiler errors that code written for ROS Noetic (Ubuntu 20.04: GCC 9, C++14, ROS headers that
+# included <boost/bind.hpp> and pluginlib headers that included ros/console.h) meets here even
+# with course_env's compatibility headers, and what to write instead.
+_NOETIC_HINTS = (
+    (re.compile("reference to %s(?P<name>_[1-9])%s is ambiguous" % (_Q, _EQ)),
+     "hint: %(name)s is both boost::placeholders::%(name)s, global wherever a ROS header is included (as on "
+     "ROS Noetic), and std::placeholders::%(name)s, which `using namespace std::placeholders;` adds: write "
+     "std::placeholders::%(name)s in std::bind (boost::placeholders::%(name)s in boost::bind), or drop the "
+     "using-directive"),
+    (re.compile("%s(?P<name>_[1-9])%s was not declared in this scope" % (_Q, _EQ)),
+     "hint: %(name)s is a placeholder of boost::bind or std::bind: write boost::placeholders::%(name)s "
+     "(std::placeholders::%(name)s with std::bind); it is global, as on ROS Noetic, only in a file that "
+     "includes a ROS header (or boost/bind.hpp) built in the course's environment "
+     "(`source <course>/catkin_ws/devel/setup.bash`)"),
+    (re.compile("%s(?P<name>ROS_[A-Z_]+)%s was not declared in this scope" % (_Q, _EQ)),
+     "hint: %(name)s comes from ros/console.h: add #include <ros/ros.h> to this file (Debian 12's "
+     "pluginlib .hpp headers, unlike Noetic's, do not include it for you)"),
+    (re.compile(r"ISO C\+\+17 does not allow dynamic exception specifications"),
+     "hint: GCC 12 compiles C++17, where `throw(...)` after a function's parameters is an error (ROS "
+     "Noetic's GCC 9 compiled C++14): write noexcept instead, or drop it"),
+)
+# Noetic's pluginlib had these .h names beside the .hpp headers; Debian 12's has only the .hpp
+# (course_env adds the .h names back, in the course's environment only).
+_PLUGINLIB_H = {"pluginlib/class_list_macros.h": "pluginlib/class_list_macros.hpp",
+                "pluginlib/class_loader.h": "pluginlib/class_loader.hpp",
+                "pluginlib/class_desc.h": "pluginlib/class_desc.hpp",
+                "pluginlib/class_loader_base.h": "pluginlib/class_loader_base.hpp",
+                "pluginlib/pluginlib_exceptions.h": "pluginlib/exceptions.hpp"}
 _LIBSTDCXX_STRING = "std::__cxx11::basic_string<char, std::char_traits<char>, std::allocator<char> >"
 # What ROS's macros and templates call behind the student's back (ROS_INFO, publish()): named
 # after the functions the student's own code calls (ros::init, ros::NodeHandle::subscribe).
@@ -186,12 +220,18 @@ def _hints(lines: Sequence[str], compiled: Sequence[str], undefined: Sequence["U
            targets: Dict[str, Target], own_messages: Iterable[str]) -> List[str]:
     hints: List[str] = []
     own = set(own_messages)
+    noetic_hinted: Set[int] = set()  # one hint per kind (_1 and _2 undeclared: one hint)
     for line in compiled:
         m = _COMPILER_ERROR.match(line)
         missing = _MISSING_HEADER.match(m.group("what")) if m else None
         if missing:
             hints.append(_missing_header_hint(missing.group("header"), missing.group("package"),
                                               _compiled_by(m.group("file"), targets), own))
+        for kind, (pattern, hint) in enumerate(_NOETIC_HINTS if m else ()):
+            noetic = pattern.search(m.group("what"))
+            if noetic and kind not in noetic_hinted:
+                noetic_hinted.add(kind)
+                hints.append(hint % noetic.groupdict())
     ros = [u for u in undefined if u.symbol.startswith(_ROS_NAMESPACES)]
     if ros:
         target = ros[0].target or Target("", "<target>")
@@ -224,6 +264,10 @@ def _compiled_by(source: str, targets: Dict[str, Target]) -> Target:
 
 
 def _missing_header_hint(header: str, package: str, target: Target, own_messages: Set[str]) -> str:
+    if header in _PLUGINLIB_H:
+        return ("hint: Debian 12's pluginlib has no %s (ROS Noetic's had it; only the course's environment, "
+                "`source <course>/catkin_ws/devel/setup.bash`, adds it back): #include <%s>"
+                % (header, _PLUGINLIB_H[header]))
     if package in own_messages:
         return ("hint: %s is generated from %s's messages, and %s was compiled before it: add "
                 "add_dependencies(%s ${${PROJECT_NAME}_EXPORTED_TARGETS} ${catkin_EXPORTED_TARGETS}) after "

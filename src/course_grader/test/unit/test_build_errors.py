@@ -129,3 +129,68 @@ def test_the_functions_the_student_called_come_before_the_macros_plumbing():
     lines = summarise(log, WS).splitlines()
     assert "`ros::init(" in lines[0]
     assert "ros::console::g_initialized" in lines[3]
+
+
+# Code written for ROS Noetic that Debian 12 still does not compile (docs/noetic_cxx.md), as g++
+# reports it in a UTF-8 locale (‘’) and in the C locale ('').
+AMBIGUOUS_LOG = """[ 50%%] Building CXX object relay/CMakeFiles/relay.dir/src/relay.cpp.o
+%(ws)s/src/relay/src/relay.cpp: In function ‘int main(int, char**)’:
+%(ws)s/src/relay/src/relay.cpp:14:62: error: reference to ‘_1’ is ambiguous
+   14 |   auto cb = std::bind(&Relay::forward, &relay, _1);
+      |                                                ^~
+/usr/include/c++/12/functional:285:34: note: candidates are: ‘const std::_Placeholder<1> std::placeholders::_1’
+/usr/include/boost/bind/placeholders.hpp:46:38: note:                 ‘constexpr const boost::arg<1> boost::placeholders::_1’
+make[2]: *** [relay/CMakeFiles/relay.dir/build.make:76: relay/CMakeFiles/relay.dir/src/relay.cpp.o] Error 1
+""" % {"ws": WS}
+
+UNDECLARED_LOG = """%(ws)s/src/fib/src/client.cpp: In constructor 'Client::Client()':
+%(ws)s/src/fib/src/client.cpp:25:52: error: '_1' was not declared in this scope
+   25 |     ac_.sendGoal(goal, boost::bind(&Client::done, this, _1, _2));
+      |                                                    ^~
+%(ws)s/src/fib/src/client.cpp:25:56: error: '_2' was not declared in this scope
+   25 |     ac_.sendGoal(goal, boost::bind(&Client::done, this, _1, _2));
+      |                                                        ^~
+make[2]: *** [fib/CMakeFiles/client.dir/build.make:76: fib/CMakeFiles/client.dir/src/client.cpp.o] Error 1
+""" % {"ws": WS}
+
+
+def test_an_ambiguous_placeholder_gets_the_qualify_it_hint():
+    lines = summarise(AMBIGUOUS_LOG, WS).splitlines()
+    assert lines[1] == "relay/src/relay.cpp:14:62: error: reference to ‘_1’ is ambiguous"
+    hints = [line for line in lines if line.startswith("hint:")]
+    assert len(hints) == 1 and "std::placeholders::_1 in std::bind" in hints[0]
+    assert "using namespace std::placeholders;" in hints[0] and "ROS Noetic" in hints[0]
+
+
+def test_undeclared_placeholders_get_one_hint_naming_the_first():
+    hints = [line for line in summarise(UNDECLARED_LOG, WS).splitlines() if line.startswith("hint:")]
+    assert len(hints) == 1, hints
+    assert "write boost::placeholders::_1" in hints[0] and "devel/setup.bash" in hints[0]
+
+
+def test_a_logging_macro_without_its_header_gets_the_include_hint():
+    log = UNDECLARED_LOG.replace("'_1' was not declared", "'ROS_INFO' was not declared").replace(
+        "'_2' was not declared", "'ROS_ERROR' was not declared")
+    hints = [line for line in summarise(log, WS).splitlines() if line.startswith("hint:")]
+    assert hints == [hints[0]] and hints[0].startswith("hint: ROS_INFO comes from ros/console.h: add #include <ros/ros.h>")
+
+
+def test_a_dynamic_exception_specification_gets_the_noexcept_hint():
+    log = COMPILE_LOG.replace("'count' was not declared in this scope; did you mean 'std::count'?",
+                              "ISO C++17 does not allow dynamic exception specifications")
+    hint = summarise(log, WS).splitlines()[-1]
+    assert hint.startswith("hint: GCC 12 compiles C++17") and "noexcept" in hint
+
+
+def test_a_noetic_pluginlib_header_name_gets_its_hpp():
+    log = RACE_LOG.replace("-- my_chatter: 1 messages, 0 services\n", "").replace(
+        "my_chatter/TimestampString.h", "pluginlib/class_list_macros.h")
+    hint = summarise(log, WS).splitlines()[-1]
+    assert hint.startswith("hint: Debian 12's pluginlib has no pluginlib/class_list_macros.h")
+    assert hint.endswith("#include <pluginlib/class_list_macros.hpp>")
+
+
+def test_a_name_that_only_looks_like_a_placeholder_gets_no_noetic_hint():
+    for name in ("_10", "x_1", "_1a", "ROS"):
+        log = UNDECLARED_LOG.replace("'_1'", "'%s'" % name).replace("'_2'", "'%s'" % name)
+        assert not [line for line in summarise(log, WS).splitlines() if line.startswith("hint:")], name

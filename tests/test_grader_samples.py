@@ -6,7 +6,7 @@ failing check in words plus the student's log tails). Only the listed milestones
 A sample with a `derive.json` is a variant of another folder of this checkout (a reference
 solution, another sample), so that neither code nor answers are written twice: it is made in a
 temporary folder before grading, from {"copy": [[source, target], ...]} (folders of the checkout,
-copied into the sample), then the sample's own files over them, then {"remove": [path, ...]} and
+copied into the sample, one over another), then the sample's own files over them, then {"remove": [path, ...]} and
 {"replace": [[path, old, new], ...]} (each `old` must be there).
 `"needs_isolation": true` (the attack samples): the verdict holds only where the sandbox isolates
 student code; where it would run with the grader's rights (isolation `none`: not root and no
@@ -64,7 +64,8 @@ def materialise(sample: Path, dest: Path) -> Path:
     made = dest / sample.name
     shutil.rmtree(made, ignore_errors=True)
     for source, target in recipe.get("copy", []):
-        shutil.copytree(ROOT / source, made / target, ignore=shutil.ignore_patterns("__pycache__", "*.pyc"))
+        shutil.copytree(ROOT / source, made / target, dirs_exist_ok=True,
+                        ignore=shutil.ignore_patterns("__pycache__", "*.pyc"))
     shutil.copytree(sample, made, dirs_exist_ok=True, ignore=shutil.ignore_patterns("derive.json"))
     for rel in recipe.get("remove", []):
         path = made / rel

@@ -1,6 +1,9 @@
 """Imported first by this sample's talker: where the course's reference solutions show through to
-a student's process (a package ROS finds, a module Python imports, a path in the environment, the
-folder itself), it says what it saw and exits, so the talker never publishes and the milestone fails."""
+a student's process (a package ROS finds, a module Python imports, a path in the environment, and
+with FOLDERS the folders themselves), it says what it saw and exits, so the talker never publishes
+and the milestone fails. The folders are hidden by the sandbox only: where student code runs with
+the grader's rights (isolation none) they are in sight, so the sample probe_no_reference_folders,
+the one that looks for them, needs isolation."""
 import importlib.util
 import os
 import subprocess
@@ -9,6 +12,7 @@ import sys
 PACKAGES = {"my_chatter", "lab2_turtlesim", "turtle_patrol", "mybot_teleop", "mybot_color", "two_turtles",
             "my_pkg", "my_robot_controller", "pkg_param", "pkg_interfaces", "pkg_tf", "pkg_metapackage"}
 MODULES = ("my_chatter", "turtle_patrol", "pkg_interfaces", "my_pkg", "mybot_color_core", "mybot_teleop_core")
+FOLDERS = False
 
 
 def seen():
@@ -16,7 +20,7 @@ def seen():
     found = ["package %s" % p for p in sorted(PACKAGES & set(listed.split()))]
     found += ["module %s" % m for m in MODULES if importlib.util.find_spec(m) is not None]
     found += ["%s=%s" % (k, v) for k, v in sorted(os.environ.items()) if "solutions" in v]
-    for entry in os.environ.get("ROS_PACKAGE_PATH", "").split(os.pathsep):
+    for entry in os.environ.get("ROS_PACKAGE_PATH", "").split(os.pathsep) if FOLDERS else []:
         for folder in ("solutions", "solutions_ws"):
             path = os.path.join(os.path.dirname(os.path.dirname(entry)), folder)
             if entry and os.path.isdir(path) and os.listdir(path):

@@ -99,9 +99,13 @@ export class Bridge {
   }
 }
 
-// The websocket URL of the server that served this page, with the page's token if it has one.
+// The websocket URL of the server that served this page, with the page's token if it has one;
+// relative to the page's path, so that it also works behind a proxy's prefix (JupyterLab's /roslab/).
 export function bridgeUrl(location) {
-  const scheme = location.protocol === 'https:' ? 'wss:' : 'ws:';
+  const url = new URL('websocket', location.href);
+  url.protocol = location.protocol === 'https:' ? 'wss:' : 'ws:';
   const token = new URLSearchParams(location.search).get('token');
-  return scheme + '//' + location.host + '/websocket' + (token ? '?token=' + encodeURIComponent(token) : '');
+  url.search = token ? '?token=' + encodeURIComponent(token) : '';
+  url.hash = '';
+  return url.href;
 }

@@ -22,6 +22,7 @@ import shutil
 import signal
 import subprocess
 import tempfile
+import threading
 import time
 import urllib.error
 import urllib.request
@@ -177,10 +178,18 @@ class Terminal:
 
     def __init__(self, workbench: Workbench, name: str) -> None:
         self.workbench, self.name = workbench, name
+        # The websocket's loop runs all the time, in a thread of its own: Jupyter pings its
+        # terminals' websockets and closes one that leaves its pings unanswered.
         self.loop = asyncio.new_event_loop()
+        self.thread = threading.Thread(target=self.loop.run_forever, name="terminal-%s" % name, daemon=True)
+        self.thread.start()
         url = "ws://127.0.0.1:%d/terminals/websocket/%s?token=%s" % (workbench.port, name, workbench.token)
-        self.socket = self.loop.run_until_complete(self._connect(url))
         self.pending = ""
+        self.socket = self._call(self._connect(url), REQUEST_TIMEOUT_S)
+
+    def _call(self, coroutine: Any, timeout: float) -> Any:
+        """Run `coroutine` on the websocket's loop; its result."""
+        return asyncio.run_coroutine_threadsafe(coroutine, self.loop).result(timeout)
 
     def run(self, command: str, timeout: float = 120.0) -> Tuple[int, str]:
         """Type `command` and Enter; wait for it to finish. (exit status, what it printed)."""
@@ -188,9 +197,9 @@ class Terminal:
         # The typed line holds the marker split in two ('@@''END'), so only the echo's output matches.
         # `a & echo`: a command line that ends in & takes no `;`
         joint = " " if command.rstrip().endswith("&") else "; "
-        self.loop.run_until_complete(self._send(["stdin", "%s%secho \"@@\"'END' $? %s\r" % (command, joint, mark)]))
+        self._call(self._send(["stdin", "%s%secho \"@@\"'END' $? %s\r" % (command, joint, mark)]), REQUEST_TIMEOUT_S)
         pattern = re.compile(r"@@END (\d+) %s" % mark)
-        text = self.loop.run_until_complete(self._read_until(pattern, timeout))
+        text = self._call(self._read_until(pattern, timeout), timeout + REQUEST_TIMEOUT_S)
         found = pattern.search(text)
         # what follows the typed line (echoed with the marker in it), up to the marker's output
         typed = text.rfind(mark, 0, found.start())
@@ -234,9 +243,13 @@ class Terminal:
 
     def close(self) -> None:
         """Close the websocket (its closing handshake done), then end the terminal's shell."""
-        self.loop.run_until_complete(self._closed())
+        try:
+            self._call(self._closed(), 2 * STOP_TIMEOUT_S)
+        finally:
+            self.loop.call_soon_threadsafe(self.loop.stop)
+            self.thread.join(STOP_TIMEOUT_S)
+            self.loop.close()
         self.workbench.request("DELETE", "/api/terminals/%s" % self.name)
-        self.loop.close()
 
     def __enter__(self) -> "Terminal":
         return self

@@ -93,7 +93,7 @@ def test_the_lab_page_is_behind_jupyters_login_and_drives_its_own_turtle(bench):
     assert after - before > 1.0, (before, after)
 
 
-def test_the_lab_page_follows_the_students_master_once_they_start_one(bench):
+def test_the_lab_page_follows_the_students_master_once_they_start_one_and_when_it_restarts(bench):
     status, _ = open_page(bench)  # the page first, on its own master
     assert status == 200
     own_masters = processes(bench, "rosmaster")
@@ -116,4 +116,11 @@ def test_the_lab_page_follows_the_students_master_once_they_start_one(bench):
         assert code == 0, said
         x = float(re.search(r"-?\d+\.\d+", said).group(0))
         assert abs(x - after) < 0.5, (said, after)
+        # the student restarts their master: lab_view registers with the new one
         term.run("kill %2; kill -INT %1; wait")
+        assert term.run("rostopic list")[0] != 0
+        code, said = term.run("roscore -p %s > ~/roscore2.log 2>&1 &" % student_port)
+        assert code == 0, said
+        again = wait_for(lambda: "/workbench_lab_view" in term.run("rosnode list 2>&1")[1], 60, 0.5)
+        assert again, term.run("rosnode list 2>&1; cat ~/roscore2.log")[1]
+        term.run("kill -INT %1; wait")

@@ -12,7 +12,7 @@ HAVE_SOLUTIONS := $(wildcard $(ROOT)/solutions/*/package.xml)
 ROSENV := source $(WS)/devel/setup.bash &&
 REFENV := source $(if $(HAVE_SOLUTIONS),$(SOLUTIONS_WS),$(WS))/devel/setup.bash &&
 
-.PHONY: deps build demo lab test flake-hunt unit rostest grade autograder bench bench-grade docker-check autograder-check clean
+.PHONY: deps build demo lab jupyter test flake-hunt unit rostest grade autograder bench bench-grade docker-check autograder-check clean
 
 deps:
 	@bash $(ROOT)/tools/deps.sh
@@ -55,13 +55,27 @@ lab: build
 	@$(ROSENV) roslaunch course_web lab_view.launch turtlesim:=true address:=$(LAB_ADDRESS) port:=$(LAB_PORT) \
 	  url_host:=$(LAB_URL_HOST)
 
+# The student's workbench: JupyterLab (http://127.0.0.1:8888/lab?token=..., JUPYTER_PORT, JUPYTER_TOKEN),
+# its terminals with the course and ~/catkin_ws sourced, the lab page at /roslab/, course-check.
+# In the course image JUPYTER_ADDRESS=0.0.0.0 (the port published by the container engine). docs/workbench.md
+JUPYTER_ADDRESS ?= 127.0.0.1
+JUPYTER_URL_HOST ?=
+JUPYTER_PORT ?= 8888
+# It builds only what was never built: a no-op `make build` (catkin_make) would add 10-25 s to every start,
+# and the image's sources never change; after editing the course's sources, run make build.
+jupyter:
+	@[ -f $(WS)/devel/share/course_workbench/cmake/course_workbenchConfig.cmake ] \
+	  && [ -x $(ROOT)/.venv-jupyter/bin/jupyter-lab ] || $(MAKE) --no-print-directory build
+	@$(ROSENV) rosrun course_workbench workbench --address $(JUPYTER_ADDRESS) --port '$(JUPYTER_PORT)' \
+	  --url-host '$(JUPYTER_URL_HOST)'
+
 # Gradescope autograder: setup.sh + run_autograder + this repository; MILESTONES="chatter ..." grades only those.
 autograder: build
 	@$(ROSENV) rosrun course_grader make_autograder --out $(ROOT)/autograder.zip $(foreach m,$(MILESTONES),--only $(m))
 
 bench: build
 	@$(REFENV) cd $(ROOT) && python3 bench/turtlesim_bench.py && python3 bench/relay_bench.py \
-	  && python3 bench/sim_bench.py && python3 bench/web_bench.py --simulator
+	  && python3 bench/sim_bench.py && python3 bench/web_bench.py --simulator && python3 bench/workbench_bench.py
 
 # The grader's trust and speed: the reference graded 20 times, then a class of 30 (about 45 min).
 bench-grade: build

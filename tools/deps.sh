@@ -26,16 +26,31 @@ if [ "$(id -u)" -eq 0 ] && ! getent passwd coursesandbox >/dev/null; then
   echo "deps: created the sandbox user coursesandbox"
 fi
 
-venv="$root/.venv"
-stamp="$venv/.requirements.sha256"
-want_sha="$(sha256sum "$root/requirements.txt" | cut -d' ' -f1)"
-if [ ! -x "$venv/bin/python3" ]; then
-  /usr/bin/python3 -m venv --system-site-packages "$venv"
-fi
-if [ "$(cat "$stamp" 2>/dev/null)" != "$want_sha" ]; then
-  echo "deps: installing PyPI packages into $venv"
-  "$venv/bin/python3" -m pip install --disable-pip-version-check -q -r "$root/requirements.txt"
-  echo "$want_sha" > "$stamp"
-else
-  echo "deps: venv up to date"
+# venv DIR REQUIREMENTS WHAT [venv options]: DIR made from /usr/bin/python3 once, REQUIREMENTS
+# installed into it again only when the file changed (its sha256 is kept in DIR).
+venv() {
+  local dir="$1" requirements="$2" what="$3"
+  shift 3
+  local stamp="$dir/.requirements.sha256" want_sha
+  want_sha="$(sha256sum "$requirements" | cut -d' ' -f1)"
+  if [ ! -x "$dir/bin/python3" ]; then
+    /usr/bin/python3 -m venv "$@" "$dir"
+  fi
+  if [ "$(cat "$stamp" 2>/dev/null)" != "$want_sha" ]; then
+    echo "deps: installing $what into $dir"
+    "$dir/bin/python3" -m pip install --disable-pip-version-check -q -r "$requirements"
+    echo "$want_sha" > "$stamp"
+  else
+    echo "deps: $what up to date in $dir"
+  fi
+}
+
+# The course's venv: Debian's ROS packages (rospy, PyQt5) stay visible.
+venv "$root/.venv" "$root/requirements.txt" "the PyPI packages" --system-site-packages
+
+# The student's workbench (make jupyter): JupyterLab in a venv of its own, apart from the course's
+# (its tornado, pyzmq, jinja2 ... are newer than Debian's, which the course's nodes use).
+# COURSE_JUPYTER=0 leaves it out (the Gradescope autograder's image grades, nobody works in it).
+if [ "${COURSE_JUPYTER:-1}" != 0 ]; then
+  venv "$root/.venv-jupyter" "$root/requirements-jupyter.txt" "JupyterLab"
 fi

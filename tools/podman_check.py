@@ -32,6 +32,9 @@ from pathlib import Path
 from typing import Dict, List, Optional, Sequence, Tuple
 
 ROOT = Path(__file__).resolve().parents[1]
+# course_testkit's rosbridge driver needs tornado alone, which Debian's python3 has.
+sys.path.insert(0, str(ROOT / "src" / "course_testkit" / "src"))
+from course_testkit.rosbridge import drive_turtle  # noqa: E402
 PODMAN = ["podman", "--runtime", "runc", "--cgroup-manager=cgroupfs"]
 BASE_IMAGE = "debian:bookworm"
 COURSE_IMAGE = "localhost/ros-course"  # the student image (the Dockerfile's default target)
@@ -277,37 +280,6 @@ def http_status(url: str) -> Tuple[int, str]:
         return e.code, ""
 
 
-def drive_turtle(url: str) -> Tuple[float, float]:
-    """Through the page's websocket (rosbridge v2, as the page's teleop panel does): turtle1's x
-    before, and after 2 s of forward Twists."""
-    import asyncio
-
-    import tornado.websocket  # Debian's python3-tornado, as the course's own tests use
-
-    async def drive() -> Tuple[float, float]:
-        socket = await tornado.websocket.websocket_connect(url.replace("http://", "ws://"), connect_timeout=10)
-        send = lambda message: socket.write_message(json.dumps(message))  # noqa: E731
-        await send({"op": "subscribe", "topic": "/turtle1/pose", "type": "turtlesim/Pose"})
-        await send({"op": "advertise", "topic": "/turtle1/cmd_vel", "type": "geometry_msgs/Twist"})
-
-        async def pose_x() -> float:
-            while True:
-                message = json.loads(await asyncio.wait_for(socket.read_message(), 10))
-                if message.get("topic") == "/turtle1/pose":
-                    return float(message["msg"]["x"])
-        before = await pose_x()
-        twist = {"linear": {"x": 2.0, "y": 0.0, "z": 0.0}, "angular": {"x": 0.0, "y": 0.0, "z": 0.0}}
-        for _ in range(20):
-            await send({"op": "publish", "topic": "/turtle1/cmd_vel", "msg": twist})
-            await asyncio.sleep(0.1)
-        after, until = before, time.monotonic() + 2.0
-        while time.monotonic() < until:  # the poses queued while publishing, then fresh ones
-            after = await pose_x()
-        socket.close()
-        return before, after
-    return asyncio.run(drive())
-
-
 def lab_check(log: Path) -> bool:
     """`make lab` in a container with its port published on the host's loopback: the URL it prints,
     the page through the published port with the token, refused without it, the turtle moved
@@ -329,7 +301,7 @@ def lab_check(log: Path) -> bool:
             return False
         with_token, page = http_status(url)
         without, _ = http_status("http://127.0.0.1:%d/" % port)
-        before, after = drive_turtle(url)
+        before, after = drive_turtle(url.replace("http://", "ws://", 1))
         ok = with_token == 200 and "<html" in page.lower() and without in (401, 403) and after - before > 0.5
         print("lab: %s -> %d; without the token -> %d; turtle1 x %.2f -> %.2f driven through the page's "
               "websocket" % (re.sub(r"token=\S+", "token=...", url), with_token, without, before, after), flush=True)

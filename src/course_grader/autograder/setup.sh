@@ -10,5 +10,5 @@ if ! command -v make >/dev/null; then
   DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends make ca-certificates python3 python3-venv
 fi
 [ -e catkin_ws/src ] || ln -s ../src catkin_ws/src
-make build
+COURSE_JUPYTER=0 make build  # no student's workbench (JupyterLab) in a grading image
 chmod +x "$source_dir/run_autograder"

@@ -23,6 +23,8 @@ from course_web.server import Settings, application
 
 DEFAULT_PORT = 8080
 DEFAULT_ADDRESS = "127.0.0.1"
+# The token may come from the environment, where other users cannot read it (a command line they can).
+TOKEN_ENV = "LAB_VIEW_TOKEN"
 
 
 def parse(argv: List[str]) -> argparse.Namespace:
@@ -30,8 +32,9 @@ def parse(argv: List[str]) -> argparse.Namespace:
     parser.add_argument("--port", type=int, default=DEFAULT_PORT)
     parser.add_argument("--address", default=DEFAULT_ADDRESS,
                         help="where to listen; anything but loopback requires a token")
-    parser.add_argument("--token", default="", help="the token to require (default: none on loopback, "
-                        "a random one, printed, otherwise)")
+    parser.add_argument("--token", default=os.environ.get(TOKEN_ENV, ""),
+                        help="the token to require (default: $%s, else none on loopback and a random one, "
+                        "printed, otherwise)" % TOKEN_ENV)
     parser.add_argument("--max-message-bytes", type=int, default=DEFAULT_MAX_MESSAGE_BYTES)
     parser.add_argument("--www", default="", help="the page's folder (default: this package's www)")
     parser.add_argument("--url-host", default="", help="the host the printed URL names (in a container: "
@@ -51,7 +54,7 @@ async def serve(args: argparse.Namespace, token: Optional[str]) -> None:
     loop = asyncio.get_running_loop()
     for sig in (signal.SIGINT, signal.SIGTERM):
         loop.add_signal_handler(sig, stop.set)
-    rospy.on_shutdown(lambda: loop.call_soon_threadsafe(stop.set))
+    rospy.on_shutdown(lambda: loop.is_closed() or loop.call_soon_threadsafe(stop.set))
     url = access.page_url(args.address, args.port, token, args.url_host)
     print("lab_view: open %s" % url, flush=True)
     rospy.loginfo("lab_view: serving the lab on %s", url)

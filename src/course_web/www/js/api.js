@@ -4,7 +4,9 @@ export async function ask(question, params = {}) {
   const query = new URLSearchParams(params);
   const token = new URLSearchParams(window.location.search).get('token');
   if (token) query.set('token', token);
-  const reply = await fetch('/api/' + question + (query.toString() ? '?' + query : ''), {cache: 'no-store'});
+  // Relative to the page: the same server at / and behind a proxy's prefix (JupyterLab's /roslab/).
+  const url = new URL('api/' + question + (query.toString() ? '?' + query : ''), window.location.href);
+  const reply = await fetch(url, {cache: 'no-store'});
   const answer = await reply.json().catch(() => ({error: 'the server answered ' + reply.status}));
   if (!reply.ok || answer.error) throw new Error(answer.error || ('the server answered ' + reply.status));
   return answer;

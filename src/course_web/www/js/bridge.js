@@ -1,5 +1,12 @@
 // A small rosbridge v2 client: one websocket, subscriptions by id, service calls as promises,
 // and our binary image frames (4-byte header length, JSON header, JPEG/PNG bytes).
+// When the socket closes (the server restarted, as behind JupyterLab when the page moves to
+// another master), it opens a new one after a pause and subscribes and advertises again; a
+// refused token (1008) is final.
+const RETRY_FIRST_MS = 500;
+const RETRY_MAX_MS = 5000;
+const POLICY_VIOLATION = 1008;
+
 export class Bridge {
   constructor(url) {
     this.url = url;
@@ -7,9 +14,11 @@ export class Bridge {
     this.topicHandlers = new Map();   // id -> {topic, onMessage}
     this.imageHandlers = new Map();   // topic -> Map(id -> onImage(blob, header))
     this.calls = new Map();           // id -> {resolve, reject}
+    this.standing = new Map();        // subscriptions and advertisements: key -> text, sent on each new socket
     this.statusListeners = [];
     this.stateListeners = [];
     this.pending = [];
+    this.retryMs = RETRY_FIRST_MS;
     this.open();
   }
 
@@ -18,10 +27,23 @@ export class Bridge {
     this.socket.binaryType = 'arraybuffer';
     this.socket.onopen = () => {
       this.setState('open');
+      this.retryMs = RETRY_FIRST_MS;
+      for (const text of this.standing.values()) this.socket.send(text);
       for (const text of this.pending) this.socket.send(text);
       this.pending = [];
     };
-    this.socket.onclose = (event) => this.setState('closed', event.reason || ('code ' + event.code));
+    this.socket.onclose = (event) => {
+      const reason = event.reason || ('code ' + event.code);
+      for (const call of this.calls.values()) call.reject(new Error('the connection closed: ' + reason));
+      this.calls.clear();
+      if (event.code === POLICY_VIOLATION) {
+        this.setState('closed', reason);
+        return;
+      }
+      this.setState('closed', reason + '; connecting again');
+      setTimeout(() => this.open(), this.retryMs);
+      this.retryMs = Math.min(2 * this.retryMs, RETRY_MAX_MS);
+    };
     this.socket.onmessage = (event) => this.receive(event.data);
   }
 
@@ -33,6 +55,13 @@ export class Bridge {
     const text = JSON.stringify(message);
     if (this.socket.readyState === WebSocket.OPEN) this.socket.send(text);
     else this.pending.push(text);
+  }
+
+  // A message that holds for the whole session: sent now if the socket is open, and on each new one.
+  sendStanding(key, message) {
+    const text = JSON.stringify(message);
+    this.standing.set(key, text);
+    if (this.socket.readyState === WebSocket.OPEN) this.socket.send(text);
   }
 
   newId(op) { return op + ':' + (this.nextId++); }
@@ -67,7 +96,7 @@ export class Bridge {
   subscribe(topic, type, onMessage, options = {}) {
     const id = this.newId('subscribe:' + topic);
     this.topicHandlers.set(id, {topic, onMessage});
-    this.send(Object.assign({op: 'subscribe', id, topic, type}, options));
+    this.sendStanding(id, Object.assign({op: 'subscribe', id, topic, type}, options));
     return id;
   }
 
@@ -75,7 +104,7 @@ export class Bridge {
     const id = this.newId('subscribe:' + topic);
     if (!this.imageHandlers.has(topic)) this.imageHandlers.set(topic, new Map());
     this.imageHandlers.get(topic).set(id, onImage);
-    this.send({op: 'subscribe', id, topic, type: 'sensor_msgs/Image', compression: format, queue_length: 1});
+    this.sendStanding(id, {op: 'subscribe', id, topic, type: 'sensor_msgs/Image', compression: format, queue_length: 1});
     return id;
   }
 
@@ -83,11 +112,16 @@ export class Bridge {
     this.topicHandlers.delete(id);
     const handlers = this.imageHandlers.get(topic);
     if (handlers) handlers.delete(id);
-    this.send({op: 'unsubscribe', id, topic});
+    if (this.standing.delete(id)) this.send({op: 'unsubscribe', id, topic});
   }
 
-  advertise(topic, type) { this.send({op: 'advertise', id: this.newId('advertise:' + topic), topic, type}); }
-  unadvertise(topic) { this.send({op: 'unadvertise', topic}); }
+  advertise(topic, type) {
+    this.sendStanding('advertise:' + topic, {op: 'advertise', id: this.newId('advertise:' + topic), topic, type});
+  }
+
+  unadvertise(topic) {
+    if (this.standing.delete('advertise:' + topic)) this.send({op: 'unadvertise', topic});
+  }
   publish(topic, msg) { this.send({op: 'publish', topic, msg}); }
 
   callService(service, args) {
@@ -99,9 +133,13 @@ export class Bridge {
   }
 }
 
-// The websocket URL of the server that served this page, with the page's token if it has one.
+// The websocket URL of the server that served this page, with the page's token if it has one;
+// relative to the page's path, so that it also works behind a proxy's prefix (JupyterLab's /roslab/).
 export function bridgeUrl(location) {
-  const scheme = location.protocol === 'https:' ? 'wss:' : 'ws:';
+  const url = new URL('websocket', location.href);
+  url.protocol = location.protocol === 'https:' ? 'wss:' : 'ws:';
   const token = new URLSearchParams(location.search).get('token');
-  return scheme + '//' + location.host + '/websocket' + (token ? '?token=' + encodeURIComponent(token) : '');
+  url.search = token ? '?token=' + encodeURIComponent(token) : '';
+  url.hash = '';
+  return url.href;
 }

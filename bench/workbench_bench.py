@@ -1,0 +1,100 @@
+#!/usr/bin/env python3
+"""The student's workbench (`make jupyter`), measured: figures printed, nothing asserted.
+
+- Start-up: from the command to a usable JupyterLab (its REST API answers and a new terminal runs
+  a first command), median and worst of --runs; for a first start (the overlay ~/catkin_ws made
+  and built) and for a start with the overlay already built (the image builds it), through
+  `make jupyter` itself (--direct: the start-up command alone, without make). Target <= 10 s.
+- Memory, PSS summed over every process of the workbench (course_sandbox.procs): idle (JupyterLab
+  alone, after start-up); with one terminal open; with the lab page open (its own master,
+  turtlesim at 30 fps, lab_view, roslab). Target idle <= 400 MiB.
+
+Run from a sourced workspace:
+    python3 bench/workbench_bench.py [--runs 5] [--direct]
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import shutil
+import statistics
+import sys
+import tempfile
+import time
+from pathlib import Path
+from typing import List, Optional, Sequence
+
+from course_sandbox.procs import proportional_bytes
+from course_testkit.isolation import pids_with_token
+from course_testkit.waiting import wait_for
+from course_testkit.workbench import Workbench
+
+ROOT = Path(__file__).resolve().parents[1]
+TARGET_START_S = 10.0
+TARGET_IDLE_MIB = 400.0
+SETTLE_S = 3.0  # let JupyterLab's start-up work (extension loading, language-server scan) end
+
+
+def workbench_mib(bench: Workbench) -> float:
+    return sum(proportional_bytes(pid) or 0 for pid in pids_with_token(bench.run_token)) / 2 ** 20
+
+
+def start_once(command: Optional[Sequence[str]], home: Optional[str]) -> float:
+    """Seconds from the command to a terminal's first answer."""
+    began = time.monotonic()
+    with Workbench(home=home, command=command) as bench:
+        with bench.terminal() as term:
+            term.run("true")
+        return time.monotonic() - began
+
+
+def prepared_home() -> str:
+    """A home whose overlay is built (as in the image)."""
+    home = tempfile.mkdtemp(prefix="workbench-bench-")
+    with Workbench(home=home):
+        pass
+    return home
+
+
+def startup(runs: int, command: Optional[Sequence[str]]) -> None:
+    how = " ".join(command) if command else "rosrun course_workbench workbench"
+    first: List[float] = [start_once(command, None) for _ in range(runs)]
+    home = prepared_home()
+    try:
+        again = [start_once(command, home) for _ in range(runs)]
+    finally:
+        shutil.rmtree(home, ignore_errors=True)
+    for label, times in (("first start (overlay made and built)", first), ("overlay already built", again)):
+        print("start-up, %s, `%s`: median %.2f s, worst %.2f s over %d (target <= %.0f s)"
+              % (label, how, statistics.median(times), max(times), len(times), TARGET_START_S), flush=True)
+
+
+def memory() -> None:
+    with Workbench() as bench:
+        time.sleep(SETTLE_S)  # a figure of the idle state: nothing to wait for but time itself
+        print("memory, idle workbench (JupyterLab): %.0f MiB PSS (target <= %.0f MiB)"
+              % (workbench_mib(bench), TARGET_IDLE_MIB), flush=True)
+        with bench.terminal() as term:
+            term.run("true")
+            print("memory, with a terminal open: %.0f MiB PSS" % workbench_mib(bench), flush=True)
+            assert bench.status("/roslab/") == 200
+            wait_for(lambda: any("turtlesim" in open("/proc/%d/cmdline" % p, "rb").read().decode(errors="replace")
+                                 for p in pids_with_token(bench.run_token) if os.path.exists("/proc/%d" % p)), 30)
+            time.sleep(SETTLE_S)
+            print("memory, with the lab page (its master, turtlesim at 30 fps, lab_view, roslab) and the terminal: "
+                  "%.0f MiB PSS" % workbench_mib(bench), flush=True)
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--runs", type=int, default=5)
+    parser.add_argument("--direct", action="store_true", help="the start-up command alone, without make")
+    args = parser.parse_args(argv)
+    command = None if args.direct else ["make", "--no-print-directory", "-C", str(ROOT), "jupyter"]
+    startup(args.runs, command)
+    memory()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,78 @@
+"""Headless chromium (course_testkit.browser) opens the workbench: JupyterLab's launcher shows the
+lab page, and its card opens the page in a new tab, logged in by Jupyter's cookie alone (no token
+in the page's URL), connected to its websocket and drawing turtlesim's canvas. When the student
+then starts their own master and a turtlesim (red, to tell it apart), the open page connects
+again by itself and draws the student's turtle."""
+from __future__ import annotations
+
+from course_testkit.browser import chromium, require_browser
+from course_testkit.waiting import wait_for
+from course_testkit.workbench import Workbench
+
+require_browser()
+
+LAUNCHER_TITLE = "ROS lab"
+# The page's state: the websocket's, how often it closed, the frames drawn, the canvas's centre pixel.
+PAGE_STATE = """
+const c = document.getElementById('connection'), v = document.getElementById('turtle-canvas');
+if (!c || !v || !v.width) return null;
+if (window.closings === undefined) {
+  window.closings = 0;
+  new MutationObserver(() => { if (c.dataset.state === 'closed') window.closings += 1; })
+    .observe(c, {attributes: true, attributeFilter: ['data-state']});
+}
+const pixel = v.getContext('2d').getImageData(Math.floor(v.width / 2), 20, 1, 1).data;
+return {state: c.dataset.state, closings: window.closings, frames: Number(v.dataset.frames || 0),
+        pixel: [pixel[0], pixel[1], pixel[2]]};
+"""
+
+
+def is_red(pixel) -> bool:
+    """Red, give or take the JPEG frames' rounding."""
+    return bool(pixel) and pixel[0] > 200 and pixel[1] < 60 and pixel[2] < 60
+
+
+def test_the_launcher_opens_the_lab_page_which_follows_the_students_master():
+    from selenium.webdriver.common.by import By
+
+    with Workbench() as bench, chromium() as browser:
+        browser.get("%s/lab?token=%s" % (bench.url, bench.token))
+
+        def card():
+            for element in browser.find_elements(By.CSS_SELECTOR, ".jp-LauncherCard"):
+                if LAUNCHER_TITLE in (element.get_attribute("title") or "") + element.text:
+                    return element
+            return None
+        found = wait_for(card, 60, 0.2)
+        assert found, "no '%s' card in JupyterLab's launcher; the launcher shows: %s" % (
+            LAUNCHER_TITLE, [e.text for e in browser.find_elements(By.CSS_SELECTOR, ".jp-LauncherCard")])
+        lab_tab = browser.current_window_handle
+        found.click()
+        assert wait_for(lambda: len(browser.window_handles) == 2, 30, 0.1), "the card opened no tab"
+        browser.switch_to.window([h for h in browser.window_handles if h != lab_tab][0])
+        assert wait_for(lambda: browser.current_url.startswith(bench.url + "/roslab/"), 30, 0.1), browser.current_url
+        assert "token=" not in browser.current_url  # Jupyter's login cookie is what lets it in
+
+        def state():
+            return browser.execute_script(PAGE_STATE) or {"state": None, "closings": 0, "frames": 0, "pixel": None}
+        assert wait_for(lambda: state()["frames"] >= 10, 60, 0.2), "the page drew no turtlesim frames: %s" % state()
+        first = state()
+        assert first["state"] == "open" and browser.title == "The lab in a browser"
+        assert first["pixel"][2] > 200 and first["pixel"][0] < 100, first  # turtlesim's blue
+
+        # the student's own master and turtlesim, red: the open page moves to them by itself
+        port = bench.master_uri.rsplit(":", 1)[1]
+        with bench.terminal() as term:
+            # (a node given _params needs its master up: rospy sets them first)
+            code, said = term.run("roscore -p %s > ~/roscore.log 2>&1 & "
+                                  "until rostopic list > /dev/null 2>&1; do sleep 0.1; done; "
+                                  "rosrun turtlesim turtlesim_node _background_r:=255 _background_g:=0 _background_b:=0 "
+                                  "> ~/turtlesim.log 2>&1 &" % port)
+            assert code == 0, said
+            red = wait_for(lambda: is_red(state()["pixel"]) and state()["state"] == "open", 90, 0.25)
+            now = state()
+            assert red, "the page did not draw the student's turtlesim: %s; %s" % (
+                now, term.run("rosnode list 2>&1; tail -n5 ~/roscore.log ~/turtlesim.log")[1])
+            assert now["closings"] >= 1  # lab_view started again on the student's master ...
+            assert wait_for(lambda: state()["frames"] >= now["frames"] + 10, 30, 0.2)  # ... and frames flow
+            term.run("kill %2; kill -INT %1; wait")

@@ -65,9 +65,11 @@ class InterfacesFuzz(unittest.TestCase):
     def test_progress(self, num):
         try:
             self.check_progress(num)
-        except AssertionError as err:  # hypothesis may report only "Flaky": keep the reason in the log
-            rospy.logerr("progress num=%d: %s (state %s, text %r)" % (num, err, self.progress.get_state(),
-                                                                    self.progress.get_goal_status_text()))
+        except AssertionError as err:  # hypothesis may report only "Flaky": say the reason where it is kept
+            said = "progress num=%d: %s (state %s, text %r)" % (num, err, self.progress.get_state(),
+                                                               self.progress.get_goal_status_text())
+            rospy.logerr(said)
+            print(said, flush=True)  # rostest's output, which the runner keeps in a failure's report
             raise
 
     def check_progress(self, num: int) -> None:

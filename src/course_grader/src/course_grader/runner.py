@@ -208,8 +208,8 @@ class Grader:
                     self._record(Verdict(sub.name, m, False, "the submission installs Python modules the course "
                                          "provides, which would replace them: %s (rename them)" % ", ".join(shadowed)))
                 return
-            unmade = {p.name: unbuilt.problems(p.path, p.name, os.path.join(ws, "devel"))
-                      for p in submissions.find_packages(os.path.join(ws, "src")) if p.name}
+            # Read from the grader's own copy of each built package (ws/src is the student's to change).
+            unmade = {p.name: unbuilt.problems(p.path, p.name, os.path.join(ws, "devel")) for p in own if p.name}
             for m in longest_first(runnable, self._durations):
                 hints = [h for p in packages if p.name in m.packages for h in script_problems(p.path)]
                 first = [h for name in m.packages for h in unmade.get(name, [])]

@@ -110,6 +110,7 @@ def forget() -> None:
     with _lock:
         _classes.clear()
         _rospack.cache_clear()
+        built_space.cache_clear()
         _trusted_roots.cache_clear()
 
 
@@ -218,6 +219,7 @@ def _rospack() -> rospkg.RosPack:
     return rospkg.RosPack()
 
 
+@lru_cache(maxsize=None)
 def built_space(pkg: str) -> Optional[str]:
     """The devel (or install) space that built the package ROS finds for `pkg`, found by path: the
     first CMAKE_PREFIX_PATH entry with a catkin marker whose source folders (devel/.catkin) hold

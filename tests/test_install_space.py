@@ -20,7 +20,7 @@ from typing import Dict, List
 
 import pytest
 
-from course_testkit.isolation import pids_with_token
+from course_testkit.isolation import pids_with_token, sourced_env
 from course_testkit.master import PrivateMaster
 from course_testkit.waiting import wait_for
 
@@ -54,9 +54,7 @@ def install_env(install_space, tmp_path_factory) -> Dict[str, str]:
     """The environment of a new shell after `source install/setup.bash`."""
     home = tmp_path_factory.mktemp("ros_home")
     start = plain_env(ROS_HOME=str(home))
-    out = subprocess.run(["bash", "-c", 'source "$1/setup.bash" && env -0', "bash", str(install_space)],
-                         env=start, stdout=subprocess.PIPE, check=True).stdout
-    env = dict(item.split("=", 1) for item in out.decode().split("\0") if "=" in item)
+    env = sourced_env(install_space / "setup.bash", start)
     env.update(QT_QPA_PLATFORM="offscreen", PYTHONUNBUFFERED="1")
     return env
 

@@ -26,6 +26,7 @@ from typing import Dict, List, NamedTuple, Optional, Tuple
 
 import pytest
 
+from course_testkit.isolation import sourced_env
 from course_testkit.master import PrivateMaster
 from course_testkit.waiting import wait_for
 
@@ -40,12 +41,6 @@ def shell_env() -> Dict[str, str]:
     """A new terminal's environment: ours without the include path the course's hook sets, so
     only sourcing a setup.bash can set it."""
     return {k: v for k, v in os.environ.items() if k != "CPLUS_INCLUDE_PATH"}
-
-
-def sourced_env(setup: Path, start: Dict[str, str]) -> Dict[str, str]:
-    out = subprocess.run(["bash", "-c", 'source "$1" >/dev/null && env -0', "bash", str(setup)],
-                         env=start, stdout=subprocess.PIPE, check=True, timeout=60).stdout
-    return dict(item.split("=", 1) for item in out.decode().split("\0") if "=" in item)
 
 
 def run(command: List[str], env: Dict[str, str], cwd: Optional[Path] = None, timeout: float = NODE_TIMEOUT_S):

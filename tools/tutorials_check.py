@@ -52,14 +52,6 @@ FOLLOWED_M = 0.5  # where turtle2 must be at the end, from turtle1
 MOVED_AWAY_M = 1.5  # how far the drive must have taken turtle1 from turtle2
 
 
-def sourced_env(setup: Path, start: Optional[Dict[str, str]] = None) -> Dict[str, str]:
-    """The environment after `source <setup>` in a new bash."""
-    out = subprocess.run(["bash", "-c", 'source "$1" >/dev/null && env -0', "bash", str(setup)],
-                         env=dict(os.environ if start is None else start), stdout=subprocess.PIPE,
-                         check=True, timeout=120).stdout
-    return dict(item.split("=", 1) for item in out.decode().split("\0") if "=" in item)
-
-
 def run_logged(command: Sequence[str], env: Dict[str, str], cwd: Path, log: Path, timeout: float) -> int:
     """Run `command` with its output in `log`; its exit code. PWD is set: catkin_make takes its
     workspace from it."""
@@ -307,6 +299,7 @@ def main(argv: Sequence[str]) -> int:
         if built.reason:
             print("  " + built.reason.replace("\n", "\n  "))
         ok = built.ok
+        from course_testkit.isolation import sourced_env
         env = sourced_env(ws / "devel" / "setup.bash") if (ws / "devel" / "setup.bash").exists() else None
         if env is not None and not args.skip_tests:
             tests = run_tests(ws, env)

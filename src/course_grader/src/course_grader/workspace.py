@@ -15,10 +15,10 @@ import importlib.util
 import os
 import shlex
 import shutil
-import subprocess
 from typing import Dict, Iterable, List, NamedTuple, Optional, Sequence, Set
 
 from course_sandbox.run import capture_oneshot, run_oneshot
+from course_testkit.isolation import sourced_env
 
 from course_grader import build_errors, build_order
 from course_grader.sandboxing import SandboxPlan, overlay_paths, parse_env
@@ -125,13 +125,7 @@ def course_environment(setup_bash: str, env: Optional[Dict[str, str]] = None) ->
     workspace sourced before it had added (the reference overlay of `make test`), then with any
     entry left in the reference folders dropped. A student's build and processes, the checks and
     the grader itself run in it: no reference package is on any of their paths."""
-    base = dict(os.environ if env is None else env)
-    command = "source %s >/dev/null 2>&1 || exit 3; exec env -0" % shlex.quote(setup_bash)
-    done = subprocess.run(["bash", "-c", command], env=base, stdout=subprocess.PIPE,
-                          stderr=subprocess.DEVNULL, stdin=subprocess.DEVNULL, check=False)
-    if done.returncode != 0:
-        raise RuntimeError("sourcing %s failed (exit code %d)" % (setup_bash, done.returncode))
-    return without_folders(parse_env(done.stdout), reference_folders(setup_bash))
+    return without_folders(sourced_env(setup_bash, env), reference_folders(setup_bash))
 
 
 def trusted_base_env() -> Dict[str, str]:

@@ -69,6 +69,15 @@ def port_below_ephemeral_range(host: str = "127.0.0.1", ranges: str = "/proc/sys
     return free_port(host)
 
 
+def sourced_env(setup: str, start: Optional[Dict[str, str]] = None, timeout: float = 120.0) -> Dict[str, str]:
+    """The environment of a new bash after `source <setup>` (a catkin setup.bash), started from
+    `start` (default: this process's). CalledProcessError when sourcing fails."""
+    out = subprocess.run(["bash", "-c", 'source "$1" >/dev/null && exec env -0', "bash", str(setup)],
+                         env=dict(os.environ if start is None else start), stdout=subprocess.PIPE,
+                         stdin=subprocess.DEVNULL, check=True, timeout=timeout).stdout
+    return dict(item.split("=", 1) for item in out.decode(errors="replace").split("\0") if "=" in item)
+
+
 def pids_with_token(token: str) -> List[int]:
     """Every live process whose environment holds TOKEN_VAR=token (never this process)."""
     needle = ("%s=%s" % (TOKEN_VAR, token)).encode()

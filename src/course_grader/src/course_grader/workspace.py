@@ -17,6 +17,7 @@ import shlex
 import shutil
 from typing import Dict, Iterable, List, NamedTuple, Optional, Sequence, Set
 
+from course_sandbox import env_paths
 from course_sandbox.run import capture_oneshot, run_oneshot
 from course_testkit.isolation import sourced_env
 
@@ -30,9 +31,6 @@ SETUP_ENV = "COURSE_WS_SETUP"  # override: the setup.bash of the course workspac
 # The reference solutions and their overlay, in the course checkout (absent from the student image).
 SOLUTIONS_DIR = "solutions"
 SOLUTIONS_WS = "solutions_ws"
-# Variables that list folders where ROS, CMake, Python, the loader or the shell look for things.
-PATH_LISTS = ("ROS_PACKAGE_PATH", "CMAKE_PREFIX_PATH", "PYTHONPATH", "LD_LIBRARY_PATH", "PKG_CONFIG_PATH",
-              "PATH", "ROSLISP_PACKAGE_DIRECTORIES", "CPATH")
 
 
 class BuildResult(NamedTuple):
@@ -109,14 +107,10 @@ def _inside(path: str, folders: Sequence[str]) -> bool:
 
 
 def without_folders(env: Dict[str, str], folders: Sequence[str]) -> Dict[str, str]:
-    """`env` with every entry of its folder lists (PATH_LISTS) that lies in one of `folders` dropped."""
+    """`env` with every entry of its folder lists (course_sandbox.env_paths) that lies in one of
+    `folders` dropped."""
     real = [os.path.realpath(f) for f in folders]
-    clean = dict(env)
-    for var in PATH_LISTS:
-        if var in clean:
-            kept = [p for p in clean[var].split(os.pathsep) if p and not _inside(p, real)]
-            clean[var] = os.pathsep.join(kept)
-    return clean
+    return env_paths.drop_entries(env, lambda p: _inside(p, real))
 
 
 def course_environment(setup_bash: str, env: Optional[Dict[str, str]] = None) -> Dict[str, str]:

@@ -5,6 +5,7 @@ import os
 import pytest
 
 from course_grader import workspace
+from course_sandbox import env_paths
 
 
 @pytest.fixture
@@ -27,7 +28,7 @@ def test_the_course_environment_has_no_reference_folder_on_any_path(course, tmp_
                    LD_LIBRARY_PATH="%s/lib:%s/lib" % (solutions_devel, devel),
                    PATH="%s/bin:%s" % (solutions_devel, os.environ["PATH"]))
     env = workspace.course_environment(course, sourced)
-    for var in workspace.PATH_LISTS:
+    for var in env_paths.FOLDER_LISTS:
         leaked = [p for p in env.get(var, "").split(os.pathsep)
                   if p and any(os.path.realpath(p).startswith(os.path.realpath(f)) for f in workspace.reference_folders(course))]
         assert not leaked, "%s keeps %s" % (var, leaked)

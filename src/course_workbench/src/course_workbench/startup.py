@@ -27,14 +27,13 @@ from typing import Dict, List, Mapping, Optional, Sequence
 
 import rospkg
 
+from course_sandbox import env_paths
+
 DEFAULT_PORT = 8888
 DEFAULT_ADDRESS = "127.0.0.1"
 DEFAULT_MASTER_URI = "http://localhost:11311"
 TOKEN_BYTES = 24
 PROXY_TIMEOUT_S = 60.0
-# Variables that list folders, where a sourced catkin workspace leaves its entries.
-FOLDER_LISTS = ("PATH", "ROS_PACKAGE_PATH", "CMAKE_PREFIX_PATH", "PYTHONPATH", "LD_LIBRARY_PATH",
-                "PKG_CONFIG_PATH", "ROSLISP_PACKAGE_DIRECTORIES", "CPATH", "CPLUS_INCLUDE_PATH")
 # Variables a sourced workspace sets to one of its folders (the course's env hook sets ROS_ROOT).
 FOLDER_VALUES = ("ROS_ROOT", "ROS_ETC_DIR")
 # catkin's markers: a devel or install space holds `.catkin`, a workspace `.catkin_workspace`.
@@ -116,14 +115,7 @@ def in_workspace(path: str, extra: Sequence[str] = ()) -> bool:
 def workbench_env(env: Mapping[str, str], checkout: str) -> Dict[str, str]:
     """`env` as before any catkin workspace was sourced: every entry of its folder lists that lies
     in a workspace or in the course checkout (its venv) dropped, and the folders a workspace set."""
-    clean = dict(env)
-    for var in FOLDER_LISTS:
-        if var in clean:
-            kept = [p for p in clean[var].split(os.pathsep) if p and not in_workspace(p, [checkout])]
-            if kept:
-                clean[var] = os.pathsep.join(kept)
-            else:
-                del clean[var]
+    clean = env_paths.drop_entries(env, lambda p: in_workspace(p, [checkout]))
     for var in FOLDER_VALUES:
         if var in clean and in_workspace(clean[var], [checkout]):
             del clean[var]

@@ -35,6 +35,10 @@ ROOT = Path(__file__).resolve().parents[1]
 # course_testkit's rosbridge driver needs tornado alone, which Debian's python3 has.
 sys.path.insert(0, str(ROOT / "src" / "course_testkit" / "src"))
 from course_testkit.rosbridge import drive_turtle  # noqa: E402
+# course_net is the standard library alone: imported by path, as Debian's python3 runs this
+# without ROS sourced (course_testkit.isolation, which re-exports it, needs course_sandbox).
+sys.path.insert(0, str(ROOT / "src" / "course_net" / "src"))
+from course_net.ports import free_port  # noqa: E402
 PODMAN = ["podman", "--runtime", "runc", "--cgroup-manager=cgroupfs"]
 BASE_IMAGE = "debian:bookworm"
 COURSE_IMAGE = "localhost/ros-course"  # the student image (the Dockerfile's default target)
@@ -261,13 +265,6 @@ def grade_class(folder: Path, scratch: Path, log: Path) -> bool:
     print("make grade: exit %s; %d students in gradebook.csv; %s" % (
         code, len(rows), last_line(log, r"^isolation: ")), flush=True)
     return bool(rows)
-
-
-def free_port() -> int:
-    import socket
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 def http_status(url: str) -> Tuple[int, str]:

@@ -20,6 +20,7 @@ import subprocess
 import uuid
 from typing import Dict, List, Optional, Sequence, Set
 
+from course_net.ports import free_port  # noqa: F401 - the tests' free_port, re-exported
 from course_sandbox import procs
 from course_sandbox.policy import Limits
 from course_sandbox.procs import descendants, signal_all
@@ -37,13 +38,6 @@ def new_token() -> str:
 def token_env(env: Dict[str, str], token: str) -> Dict[str, str]:
     """`env` with the run's token set."""
     return dict(env, **{TOKEN_VAR: token})
-
-
-def free_port(host: str = "127.0.0.1") -> int:
-    """A TCP port nobody listens on right now (the kernel's pick)."""
-    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as sock:
-        sock.bind((host, 0))
-        return sock.getsockname()[1]
 
 
 def port_below_ephemeral_range(host: str = "127.0.0.1", ranges: str = "/proc/sys/net/ipv4/ip_local_port_range",

@@ -25,7 +25,6 @@ import ctypes
 import http.client
 import os
 import signal
-import socket
 import subprocess
 import sys
 import threading
@@ -34,6 +33,8 @@ import xmlrpc.client
 from typing import Dict, List, Optional, Sequence
 
 import roslib.packages
+
+from course_net.ports import free_port
 
 from course_workbench.startup import DEFAULT_MASTER_URI, TOKEN_VAR
 
@@ -63,12 +64,6 @@ def master_pid(uri: str) -> Optional[int]:
     except (OSError, xmlrpc.client.Error, http.client.HTTPException):
         return None
     return int(pid) if code == 1 else None
-
-
-def free_loopback_port() -> int:
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        return probe.getsockname()[1]
 
 
 def _die_with_parent() -> None:
@@ -123,7 +118,7 @@ class RosLab:
         return env
 
     def start_own(self) -> None:
-        port = free_loopback_port()
+        port = free_port()
         self.own_uri = "http://localhost:%d" % port
         env = self.node_env(self.own_uri)
         env["ROS_HOSTNAME"] = "localhost"

@@ -1,0 +1,17 @@
+"""A free TCP port, the kernel's pick: for a server a test or tool starts and must name the port of.
+
+No ROS in here, and nothing but the standard library: tools/podman_check.py, which runs with
+Debian's /usr/bin/python3 possibly without ROS sourced, imports it by path.
+"""
+from __future__ import annotations
+
+import socket
+
+LOOPBACK = "127.0.0.1"
+
+
+def free_port(host: str = LOOPBACK) -> int:
+    """A TCP port nobody listens on at `host` right now (bound to port 0, then released)."""
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as sock:
+        sock.bind((host, 0))
+        return sock.getsockname()[1]

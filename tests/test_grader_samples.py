@@ -21,7 +21,6 @@ rest of the suite; the first test here waits for it.
 from __future__ import annotations
 
 import json
-import os
 import re
 import shutil
 import subprocess
@@ -33,7 +32,9 @@ import pytest
 
 from course_sandbox import levels
 from course_sandbox.policy import DEFAULT_USER
+from course_testkit.gradings import processes_of
 from course_testkit.nodes import NodeProcess
+from course_testkit.samples import materialise
 
 ROOT = Path(__file__).resolve().parents[1]
 ALL_SAMPLES = sorted(p.parent for p in ROOT.glob("tests/submissions/*/expected.json"))
@@ -52,29 +53,6 @@ JOBS = 3  # 20 reference gradings at 3 gave 0 wrong verdicts, and at the default
 GRADER_TIMEOUT_S = 3600
 STOP_TIMEOUT_S = 30.0
 MESSAGE_CHARS = 2500
-
-
-def materialise(sample: Path, dest: Path) -> Path:
-    """The sample as handed in: itself, or for a derived sample (derive.json) the folder it
-    describes, made under `dest`."""
-    recipe_path = sample / "derive.json"
-    if not recipe_path.is_file():
-        return sample
-    recipe = json.loads(recipe_path.read_text())
-    made = dest / sample.name
-    shutil.rmtree(made, ignore_errors=True)
-    for source, target in recipe.get("copy", []):
-        shutil.copytree(ROOT / source, made / target, dirs_exist_ok=True,
-                        ignore=shutil.ignore_patterns("__pycache__", "*.pyc"))
-    shutil.copytree(sample, made, dirs_exist_ok=True, ignore=shutil.ignore_patterns("derive.json"))
-    for rel in recipe.get("remove", []):
-        path = made / rel
-        shutil.rmtree(path) if path.is_dir() else path.unlink()
-    for rel, old, new in recipe.get("replace", []):
-        text = (made / rel).read_text()
-        assert old in text, "%s: derive.json replaces %r, which %s does not hold" % (sample.name, old, rel)
-        (made / rel).write_text(text.replace(old, new))
-    return made
 
 
 class SampleGrading:
@@ -173,17 +151,7 @@ def test_nothing_left_running(graded: Path) -> None:
     """Every run's trusted processes carry COURSE_ARTIFACTS_DIR under the output folder, and every
     sandboxed student process has its workspace mounted from there (whatever it did to its
     environment): none may survive."""
-    marker = str(graded).encode()
-    left = []
-    for pid in filter(str.isdigit, os.listdir("/proc")):
-        try:
-            environ = Path("/proc", pid, "environ").read_bytes()
-            mounts = Path("/proc", pid, "mountinfo").read_bytes()
-            cmdline = Path("/proc", pid, "cmdline").read_bytes().replace(b"\0", b" ")
-        except OSError:
-            continue
-        if (marker in environ or marker in mounts) and int(pid) != os.getpid():
-            left.append("%s %s" % (pid, cmdline.decode(errors="replace")))
+    left = processes_of(str(graded))
     assert not left, "processes left running after grading:\n" + "\n".join(left)
 
 

@@ -10,22 +10,28 @@ Writes under --out (default ./grades):
   <student>/results.json                          Gradescope results
   gradebook.csv, report.html                      the class
 Prints a line per finished submission. Exit code: with the reference, 1 if a milestone fails;
-with students, 0 once every submission has its verdicts.
+with students, 0 once every submission has its verdicts; 130 when stopped by Ctrl+C (SIGINT) or
+SIGTERM: within seconds, the runs under way ended, the verdicts so far written and the rest
+"not graded (interrupted)". Each start first ends what a killed grading left (processes, pids
+cgroups; in the same --out, its work folders).
 """
 from __future__ import annotations
 
 import argparse
 import os
 import shutil
+import signal
 import sys
 import time
 from typing import List, Optional, Set, Tuple
 
 from course_milestones.registry import MILESTONES
-from course_sandbox import levels
+from course_sandbox import leftovers, levels
+from course_sandbox.policy import Limits, MiB
 
 from course_grader import gradebook, report, submissions, workspace
-from course_grader.runner import REFERENCE, Grader, Options
+from course_grader.verdict import INTERRUPTED
+from course_grader.runner import REFERENCE, Busy, Grader, Options, claim_output, release_output
 
 # Three milestone runs per core: most of a run is waiting on behaviour the text fixes (a drawing,
 # a robot driving, a time-out), which other runs' CPU work fills. Reference, 18 milestones on 2
@@ -84,6 +90,8 @@ def parse(argv: Optional[List[str]]) -> argparse.Namespace:
                         help="grade each submission on the milestones named (as keys) in its own JSON FILE")
     parser.add_argument("--out", default="grades", help="output folder (default ./grades)")
     parser.add_argument("--timeout", type=float, default=240.0, help="time limit per milestone run, s")
+    parser.add_argument("--disk", type=int, default=Limits().disk_bytes // MiB, metavar="MIB",
+                        help="disk one student's build and runs may fill in total, MiB (default %(default)s)")
     parser.add_argument("--results-json", metavar="PATH",
                         help="also write the (one) submission's Gradescope results.json to PATH")
     parser.add_argument("--list", action="store_true", help="list the milestones and exit")
@@ -98,16 +106,32 @@ def split_only(only: Optional[List[str]], names: Set[str]) -> Tuple[Optional[Lis
     return [o for o in only or [] if o not in paths] or None, paths
 
 
+# The exit code of a grading the TA stopped (a shell's for a command ended by SIGINT).
+EXIT_INTERRUPTED = 130
+
+
+def stop_on_signals(grader: Grader) -> None:
+    """Ctrl+C (SIGINT) and SIGTERM stop the grading (Grader.interrupt) instead of killing it."""
+    def handler(signum, _frame) -> None:
+        if not grader.interrupted:
+            print("%s: stopping: ending the runs under way, writing the verdicts so far"
+                  % signal.Signals(signum).name, file=sys.stderr, flush=True)
+        grader.interrupt()
+    for signum in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(signum, handler)
+
+
 # Set in the environment of a grader that started itself again in the course's environment.
 COURSE_ENV_MARK = "COURSE_GRADER_COURSE_ENV"
 
 
 def in_course_environment() -> None:
-    """Go on in the course workspace's environment alone (workspace.course_environment): exec this
-    same command in it, once, unless this process already runs in it."""
-    if os.environ.get(COURSE_ENV_MARK) == "1":
+    """Go on in the course workspace's environment alone (workspace.course_environment), marked
+    as a grading of its own (course_sandbox.leftovers: what it starts is found by the mark if it is
+    killed): exec this same command in it, once, unless this process already runs so."""
+    if os.environ.get(COURSE_ENV_MARK) == "1" and leftovers.is_marked():
         return
-    env = workspace.course_environment(workspace.course_setup())
+    env = leftovers.marked(workspace.course_environment(workspace.course_setup()))
     env[COURSE_ENV_MARK] = "1"
     os.execve(sys.executable, [sys.executable] + sys.argv, env)
 
@@ -142,15 +166,30 @@ def main(argv: Optional[List[str]] = None) -> int:
     out = os.path.abspath(opts.out)
     os.makedirs(out, exist_ok=True)
     started = time.monotonic()
+    ended = leftovers.sweep()
+    if ended:
+        print("ended what a killed grading left: %s" % ended, flush=True)
+    try:
+        removed = claim_output(out)
+    except Busy as err:
+        print("cannot grade: %s" % err, file=sys.stderr)
+        return 2
+    if removed:
+        print("removed %s" % removed, flush=True)
     try:
         grader = Grader(MILESTONES, Options(out, opts.jobs, opts.only, opts.only_from, opts.timeout,
                                             opts.verbose or reference, [s.path for s in subs if s.path],
-                                            opts.builds))
+                                            opts.builds, opts.disk * MiB))
     except levels.Unavailable as err:
+        release_output(out)
         print("cannot grade: %s" % err, file=sys.stderr)
         return 2
     print("isolation: %s" % grader.sandbox.describe(), flush=True)
-    verdicts = grader.grade(subs, reference)
+    stop_on_signals(grader)
+    try:
+        verdicts = grader.grade(subs, reference)
+    finally:
+        release_output(out)
     gradebook.write(os.path.join(out, "gradebook.csv"), verdicts, MILESTONES)
     report.write(os.path.join(out, "report.html"), verdicts, MILESTONES, grader.sandbox.describe())
     if opts.results_json:
@@ -159,4 +198,9 @@ def main(argv: Optional[List[str]] = None) -> int:
     print("graded %d submission(s), %d milestone verdicts (%d failed) in %.1f s, --jobs %d --builds %d; see %s"
           % (len(subs), len(verdicts), len(failed), time.monotonic() - started, opts.jobs, opts.builds,
              os.path.join(out, "report.html")), flush=True)
+    if grader.interrupted:
+        print("interrupted: %d verdict(s) written, %d not graded" % (
+            sum(v.reason != INTERRUPTED for v in verdicts), sum(v.reason == INTERRUPTED for v in verdicts)),
+            flush=True)
+        return EXIT_INTERRUPTED
     return 1 if reference and failed else 0

@@ -4,7 +4,19 @@ built at once (a build keeps a core busy while most of a run waits on behaviour:
 next submission while the last one's runs go on fills those waits; in one pool, every build came
 first and the runs after); write each verdict's JUnit XML and each submission's results.json as
 soon as it is complete. One submission's failure (even a crash of the grader on it) is that
-submission's verdict and never stops the others."""
+submission's verdict and never stops the others.
+
+`interrupt()` (the TA's Ctrl+C: SIGINT or SIGTERM, cli.py) stops a grading within seconds: no
+build or run starts after it, the running ones are ended (every process below the grader,
+frozen then killed: rostest, the checks, the simulators, the builds, the sandboxes' namespaces),
+and every verdict not reached is "not graded (interrupted)"; a run that had passed before its
+end keeps its verdict. Each submission still gets its results.json.
+
+A grading's pid is in `<out>/_work/grading.pid` while it runs. A grader that finds the file of a
+grading that is gone (killed: SIGKILL leaves no clean-up) removes that grading's work folders
+(`_work/<student>`) before it starts; one that finds a live grading's refuses to start. What
+a killed grading left running on the machine is ended by course_sandbox.leftovers.sweep, at
+every start.""" 
 from __future__ import annotations
 
 import json
@@ -25,7 +37,8 @@ from course_testkit import junit
 from course_testkit.artifacts import ENV_VAR as ARTIFACTS_VAR
 from course_testkit.rostest_runner import run_rostest
 
-from course_sandbox.policy import ENV_VAR as POLICY_VAR
+from course_sandbox import leftovers, procs
+from course_sandbox.policy import ENV_VAR as POLICY_VAR, Limits
 
 from course_grader import gradescope, submissions, verdict, workspace
 from course_grader.sandboxing import SandboxPlan
@@ -38,6 +51,47 @@ MILESTONE_PACKAGE = "course_milestones"
 REFERENCE = "reference"
 # Under --out, beside the students' folders; no student name starts with "_" (submissions.student_name).
 WORK_DIR = "_work"
+PID_FILE = "grading.pid"  # in WORK_DIR: the pid of the grading that writes this output folder
+KEPT_IN_WORK = ("durations.json", PID_FILE)
+# While interrupted: how often the processes below the grader are looked for and killed again.
+INTERRUPT_POLL_S = 0.2
+
+
+class Busy(RuntimeError):
+    """Another grading, still running, writes into this output folder."""
+
+
+def claim_output(out: str) -> str:
+    """Make `out` this grading's: refuse (Busy) while another live grading has it; where a
+    grading that is gone (killed) had it, remove its work folders. Returns what was removed, in
+    words ("" when nothing)."""
+    work = os.path.join(out, WORK_DIR)
+    os.makedirs(work, exist_ok=True)
+    pid_file = os.path.join(work, PID_FILE)
+    try:
+        with open(pid_file) as f:
+            previous = int(f.read().strip() or 0)
+    except (OSError, ValueError):
+        previous = 0
+    removed = []
+    if previous and previous != os.getpid():
+        if leftovers.is_live_grader(previous):
+            raise Busy("another grading (pid %d) is writing into %s" % (previous, out))
+        for entry in sorted(os.listdir(work)):
+            if entry not in KEPT_IN_WORK:
+                shutil.rmtree(os.path.join(work, entry), ignore_errors=True)
+                removed.append(entry)
+    with open(pid_file, "w") as f:
+        f.write(str(os.getpid()))
+    return ("the work folders of a grading that was killed (pid %d): %s" % (previous, ", ".join(removed))
+            if removed else "")
+
+
+def release_output(out: str) -> None:
+    try:
+        os.remove(os.path.join(out, WORK_DIR, PID_FILE))
+    except FileNotFoundError:
+        pass
 
 
 def longest_first(milestones: Sequence[Milestone], durations: Dict[str, float]) -> List[Milestone]:
@@ -63,6 +117,7 @@ class Options(NamedTuple):
     verbose: bool = False
     sources: Sequence[str] = ()  # the submissions' own paths (the class folder): hidden from student code
     builds: int = 1  # submissions unpacked and built at once, beside the `jobs` runs
+    disk_bytes: int = Limits().disk_bytes  # what one student's work folder may take on disk in total
 
 
 class _Progress:
@@ -94,11 +149,13 @@ class Grader:
         self._protected = workspace.course_packages() - students
         self._durations_path = os.path.join(options.out, WORK_DIR, "durations.json")
         self._durations = dict(TYPICAL_S, **_load_json(self._durations_path))
+        self._stop = threading.Event()
         self._pool = ThreadPoolExecutor(max(1, options.jobs), thread_name_prefix="grade")
         self._builds = ThreadPoolExecutor(max(1, options.builds), thread_name_prefix="build")
         self._setup = workspace.course_setup()
         self.sandbox = SandboxPlan(options.out, workspace.course_root(self._setup), options.sources,
-                                   reference=workspace.reference_folders(self._setup))
+                                   reference=workspace.reference_folders(self._setup),
+                                   limits=Limits(disk_bytes=options.disk_bytes))
 
     # -- scheduling -------------------------------------------------------------------------
     def _submit(self, fn, *args, pool: Optional[ThreadPoolExecutor] = None) -> None:
@@ -120,15 +177,36 @@ class Grader:
             self._submit(self._prepare, sub, reference, pool=self._builds)
         with self._lock:
             while self._pending:
-                self._idle.wait()
+                self._idle.wait(INTERRUPT_POLL_S)
+                if self._stop.is_set():
+                    self._lock.release()
+                    try:
+                        self._end_running()
+                    finally:
+                        self._lock.acquire()
         self._pool.shutdown()
         self._builds.shutdown()
         self.sandbox.end_leftovers()
+        if self._stop.is_set():
+            self._end_running()
+            leftovers.sweep()  # the ended checks' pids cgroups
         self._durations.update({v.milestone.name: round(v.elapsed, 1) for v in self.verdicts if v.elapsed})
         os.makedirs(os.path.dirname(self._durations_path), exist_ok=True)
         with open(self._durations_path, "w") as f:
             json.dump(self._durations, f, indent=1, sort_keys=True)
         return self.verdicts
+
+    def interrupt(self) -> None:
+        """Stop the grading (safe in a signal handler: it only sets a flag; grade() does the rest)."""
+        self._stop.set()
+
+    @property
+    def interrupted(self) -> bool:
+        return self._stop.is_set()
+
+    def _end_running(self) -> None:
+        """Kill every process below the grader: the runs and builds under way, and their sandboxes."""
+        leftovers.end_all(lambda: procs.descendants(os.getpid()))
 
     # -- one submission ---------------------------------------------------------------------
     def _student_dir(self, student: str, *parts: str) -> str:
@@ -160,6 +238,10 @@ class Grader:
         progress = self._progress[sub.name]
         progress.started = time.monotonic()
         selected: List[Milestone] = []
+        if self._stop.is_set():
+            self._fail_all(sub, verdict.select(self.milestones, [], self._only_for(None), reference),
+                           verdict.INTERRUPTED)
+            return
         try:
             # The reference (the checkout's solutions/) is graded as a student's submission is:
             # copied, built as an overlay in the sandbox and run there; only its milestones are all.
@@ -195,9 +277,15 @@ class Grader:
             if left_out:
                 progress.note += "\nleft out (the course provides them): %s" % ", ".join(left_out)
             setup = self._setup
+            if self._stop.is_set():
+                self._fail_all(sub, runnable, verdict.INTERRUPTED)
+                return
             workspace.populate(ws, own)
             built = workspace.build(ws, setup, self.sandbox, self._work_dir(sub.name, "home"),
                                     self._work_dir(sub.name, "build.log"))
+            if self._stop.is_set():  # the build may have been ended half-way
+                self._fail_all(sub, runnable, verdict.INTERRUPTED)
+                return
             if not built.ok:
                 for m in runnable:
                     self._record(Verdict(sub.name, m, False, verdict.build_failed(built.summary)))
@@ -215,8 +303,8 @@ class Grader:
                 first = [h for name in m.packages for h in unmade.get(name, [])]
                 self._submit(self._run, sub, m, built.env, hints, ws, built.student_env, first)
         except Exception:  # noqa: BLE001 - the grader's own failure is this submission's verdict
-            self._fail_all(sub, selected or self.milestones[:1], "the grader failed on this submission:\n%s"
-                           % traceback.format_exc(limit=5))
+            self._fail_all(sub, selected or self.milestones[:1], verdict.INTERRUPTED if self._stop.is_set() else
+                           "the grader failed on this submission:\n%s" % traceback.format_exc(limit=5))
 
     def _run(self, sub: Submission, m: Milestone, env: Dict[str, str], hints: List[str], ws: Optional[str],
              student_env: Optional[Dict[str, str]], first: Sequence[str] = ()) -> None:
@@ -224,6 +312,9 @@ class Grader:
         student's processes in a sandbox the check starts from the policy written here. On a
         failure, `first` (what the package holds but its build did not make: the cause to fix)
         comes before the check's reason and `hints` after it, each only if the check did not say it."""
+        if self._stop.is_set():
+            self._record(Verdict(sub.name, m, False, verdict.INTERRUPTED))
+            return
         try:
             artifacts = self._student_dir(sub.name, m.name)
             shutil.rmtree(artifacts, ignore_errors=True)
@@ -234,13 +325,17 @@ class Grader:
             os.makedirs(os.path.join(home, "log"))
             self.sandbox.give(home)
             report = os.path.join(run_dir, "sandbox.json")
-            policy = self.sandbox.policy([p for p in (ws, home) if p], home, student_env, report)
+            policy = self.sandbox.policy([p for p in (ws, home) if p], home, student_env, report,
+                                         disk_folder=self._work_dir(sub.name))
             policy_path = policy.write(os.path.join(run_dir, "sandbox_policy.json"))
             run_env = dict(env, **{ARTIFACTS_VAR: artifacts, POLICY_VAR: policy_path})
             result = run_rostest(MILESTONE_PACKAGE, m.test_file, env=run_env, results_dir=run_dir,
                                  timeout=self.options.timeout)
             with open(os.path.join(artifacts, "rostest.txt"), "w") as f:
                 f.write(result.output)
+            if self._stop.is_set() and not result.passed:  # ended by the interruption: no verdict
+                self._record(Verdict(sub.name, m, False, verdict.INTERRUPTED, elapsed=0.0))
+                return
             hits = verdict.sandbox_hits(report)
             passed = result.passed and not verdict.ended_by_limit(hits)
             reason = "" if passed else verdict.ENDED_BY_LIMIT if result.passed else result.summary()
@@ -251,11 +346,13 @@ class Grader:
             copy_logs(os.path.join(home, "log"), os.path.join(artifacts, "ros_log"))
             verdict.trim_files(artifacts)
             verdict.trim_files(run_dir, skip=home)  # the student's home is theirs: never written by us
+            # Its logs are copied: what the run wrote no longer counts in the student's disk bound.
+            shutil.rmtree(home, ignore_errors=True)
             self._record(Verdict(sub.name, m, passed, reason, verdict.log_tails(artifacts),
                                  result.elapsed, artifacts, verdict.sandbox_notes(hits)))
         except Exception:  # noqa: BLE001
-            self._record(Verdict(sub.name, m, False, "the grader failed on this milestone:\n%s"
-                                 % traceback.format_exc(limit=5)))
+            self._record(Verdict(sub.name, m, False, verdict.INTERRUPTED if self._stop.is_set() else
+                                 "the grader failed on this milestone:\n%s" % traceback.format_exc(limit=5)))
 
     # -- results ----------------------------------------------------------------------------
     def _expect(self, sub: Submission, count: int) -> None:

@@ -26,7 +26,8 @@ class SandboxPlan:
     """One grading's sandbox settings: the level (probed once), the user, and the paths."""
 
     def __init__(self, out: str, course_root: str, class_paths: Sequence[str] = (),
-                 user: Optional[str] = None, reference: Sequence[str] = ()) -> None:
+                 user: Optional[str] = None, reference: Sequence[str] = (), limits: Limits = Limits()) -> None:
+        self.limits = limits
         self.user = user or os.environ.get(SANDBOX_USER_VAR, DEFAULT_USER)
         self.level = levels.detect(self.user)
         # Without PID namespaces, this grading's processes are told apart by their real group.
@@ -83,9 +84,10 @@ class SandboxPlan:
         return path
 
     def policy(self, writable: Sequence[str], home: str, student_env: Optional[Dict[str, str]] = None,
-               report: str = "") -> Policy:
+               report: str = "", disk_folder: str = "") -> Policy:
+        """A sandbox's policy; `disk_folder`: the student's work folder, bounded on disk in total."""
         return Policy(self.level, self.user, normalised(writable), list(self.hidden), [self.course_root],
-                      home, student_env, report=report, gid=self.gid)
+                      home, student_env, self.limits, report=report, gid=self.gid, disk_folder=disk_folder)
 
 
 def parse_env(data: bytes) -> Dict[str, str]:

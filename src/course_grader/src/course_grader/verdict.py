@@ -99,6 +99,10 @@ def missing_package(milestone: Milestone, found: Sequence[Package]) -> Optional[
     return text
 
 
+# The verdict of a milestone the grading did not reach, or whose run it ended, when the TA stopped it.
+INTERRUPTED = "not graded (interrupted)"
+
+
 def build_failed(summary: str) -> str:
     return "the submission does not build (catkin_make failed):\n%s" % summary
 
@@ -154,7 +158,7 @@ def trim_files(folder: str, keep: int = KEEP_BYTES, skip: str = "") -> None:
 # The limits at which the sandbox's watcher ends a run's processes. A run whose code reached one
 # fails whatever its check saw before: otherwise the verdict of a fork bomb beside a correct node
 # would hang on which came first, the check or the limit.
-ENDING_LIMITS = ("memory", "processes")
+ENDING_LIMITS = ("memory", "processes", "disk")
 ENDED_BY_LIMIT = ("the checks passed, but your code reached a sandbox limit and all its processes were "
                   "ended (a solution must stay within the limits: see the sandbox note below)")
 

@@ -18,7 +18,7 @@ import shutil
 from typing import Dict, Iterable, List, NamedTuple, Optional, Sequence, Set
 
 from course_sandbox import env_paths
-from course_sandbox.run import capture_oneshot, run_oneshot
+from course_sandbox.run import LimitHits, capture_oneshot, run_oneshot
 from course_testkit.isolation import sourced_env
 
 from course_grader import build_errors, build_order
@@ -133,17 +133,21 @@ def trusted_base_env() -> Dict[str, str]:
 def build(ws: str, setup_bash: str, plan: SandboxPlan, home: str, log_path: str,
           timeout: float = BUILD_TIMEOUT_S) -> BuildResult:
     """catkin_make in `ws` on top of the course workspace, in a sandbox of its own (CMake runs
-    whatever the student's CMakeLists.txt says): writable are only `ws` and `home`. If it builds,
+    whatever the student's CMakeLists.txt says): writable are only `ws` and `home`, and the
+    folder holding `ws` (the student's work folder) is bounded on disk in total. If it builds,
     the overlay's environment for the trusted side (computed) and for the student's own processes
     (sourced inside a sandbox: the overlay's setup.bash and env hooks are the student's). The log
     goes to `log_path`, outside `ws`: the trusted side never opens a path the student could
     have made a link."""
     plan.give(ws)
     plan.give(home)
-    policy = plan.policy([ws, home], home)
+    policy = plan.policy([ws, home], home, disk_folder=os.path.dirname(ws))
     env = dict(trusted_base_env(), HOME=home)
     command = "source %s && catkin_make -DPYTHON_EXECUTABLE=%s" % (shlex.quote(setup_bash), PYTHON)
-    code = run_oneshot(policy, ["bash", "-c", command], ws, env, log_path, timeout)
+    hits = LimitHits()
+    code = run_oneshot(policy, ["bash", "-c", command], ws, env, log_path, timeout, hits)
+    if "disk" in hits.hits:
+        return BuildResult(False, log_path, "sandbox limit: %s" % hits.hits["disk"], None)
     text = _tail(log_path)
     if code is None:
         return BuildResult(False, log_path, "catkin_make did not finish within %.0f s" % timeout, None)

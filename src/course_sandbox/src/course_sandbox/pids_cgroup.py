@@ -20,6 +20,8 @@ from __future__ import annotations
 import functools
 import itertools
 import os
+import signal
+import time
 from typing import List, Optional
 
 # Writes the shell's own pid into the cgroup ($0), then becomes the command ("$@"); a command that
@@ -72,7 +74,8 @@ def _read(path: str) -> str:
         return f.read()
 
 
-def _own_parent() -> Optional[str]:
+def own_parent() -> Optional[str]:
+    """The folder of this process's own pids cgroup (see parent_from), or None."""
     try:
         return parent_from(_read("/proc/self/mountinfo"), _read("/proc/self/cgroup"))
     except OSError:
@@ -104,7 +107,7 @@ class PidsCgroup:
     def create(cls, limit: int) -> Optional["PidsCgroup"]:
         """A new cgroup below this process's own, holding at most `limit` tasks; None where the
         machine gives none."""
-        parent = _own_parent()
+        parent = own_parent()
         if parent is None or not _delegates_pids(parent):
             return None
         path = os.path.join(parent, "%s%d-%d" % (NAME_PREFIX, os.getpid(), next(_serial)))
@@ -159,6 +162,22 @@ class PidsCgroup:
             return True
         except OSError:
             return False
+
+    def remove_when_empty(self, timeout: float = 5.0) -> bool:
+        """Remove the cgroup once the processes killed in it are gone (a killed process leaves
+        its cgroup when it is reaped), killing what is still in it meanwhile; False if one never
+        goes (the cgroup is left, empty of use)."""
+        deadline = time.monotonic() + timeout
+        while not self.remove():
+            if time.monotonic() > deadline:
+                return False
+            for pid in self.members():
+                try:
+                    os.kill(pid, signal.SIGKILL)
+                except (ProcessLookupError, PermissionError):
+                    pass
+            time.sleep(0.01)
+        return True
 
 
 @functools.lru_cache(maxsize=1)

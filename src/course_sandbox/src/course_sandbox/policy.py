@@ -24,7 +24,9 @@ class Limits(NamedTuple):
     """Per sandbox: `processes` counts tasks (threads too, as RLIMIT_NPROC does) of the sandbox's
     own user namespace; `memory_bytes` is the resident memory of all its processes together
     (the run is ended past it); `address_space_bytes`, `cpu_seconds` and `file_bytes` hold for
-    each process (RLIMIT_AS, RLIMIT_CPU, RLIMIT_FSIZE); `tmp_bytes` is the size of its private /tmp."""
+    each process (RLIMIT_AS, RLIMIT_CPU, RLIMIT_FSIZE); `tmp_bytes` is the size of its private /tmp;
+    `disk_bytes` is what the policy's `disk_folder` (all of one student's files: its build and
+    runs) may take on disk in total (course_sandbox.disk)."""
 
     processes: int = 1024
     memory_bytes: int = 3 * GiB
@@ -32,11 +34,12 @@ class Limits(NamedTuple):
     cpu_seconds: int = 300
     file_bytes: int = 64 * MiB
     tmp_bytes: int = 256 * MiB
+    disk_bytes: int = 1 * GiB
 
     def describe(self) -> str:
-        return ("%d processes, %d MiB of memory, %d s of CPU per process, %d MiB per file, %d MiB of /tmp"
-                % (self.processes, self.memory_bytes // MiB, self.cpu_seconds, self.file_bytes // MiB,
-                   self.tmp_bytes // MiB))
+        return ("%d processes, %d MiB of memory, %d s of CPU per process, %d MiB per file, %d MiB of disk in "
+                "total, %d MiB of /tmp" % (self.processes, self.memory_bytes // MiB, self.cpu_seconds,
+                                           self.file_bytes // MiB, self.disk_bytes // MiB, self.tmp_bytes // MiB))
 
 
 class Policy(NamedTuple):
@@ -53,6 +56,8 @@ class Policy(NamedTuple):
         sandbox); None: the check's environment (the reference solutions).
     limits: see Limits.
     report: where the trusted side writes what the sandbox saw (limits hit), or "".
+    disk_folder: the folder whose total size limits.disk_bytes bounds (the student's work
+        folder), or "": no bound in total.
     gid: the real group student code runs with when the user is switched; -1: the user's own.
         Without PID namespaces (isolation `user only`) a grading gives its processes a group of
         their own (grading_gid), so its final sweep ends its processes alone, not another grading's.
@@ -68,6 +73,7 @@ class Policy(NamedTuple):
     limits: Limits = Limits()
     report: str = ""
     gid: int = -1
+    disk_folder: str = ""
 
     def to_json(self) -> str:
         data = self._asdict()

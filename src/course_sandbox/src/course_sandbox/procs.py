@@ -24,6 +24,15 @@ def parent(pid: int) -> Optional[int]:
         return None
 
 
+def running(pid: int) -> bool:
+    """Whether `pid` is a process that has not exited (a zombie, exited but not yet reaped, has)."""
+    try:
+        with open("/proc/%d/stat" % pid) as f:
+            return f.read().rsplit(")", 1)[1].split()[0] not in ("Z", "X")
+    except (OSError, IndexError):
+        return False
+
+
 def descendants(root: int) -> List[int]:
     """The processes below `root` in the parent tree right now (not root itself)."""
     children: Dict[int, List[int]] = {}

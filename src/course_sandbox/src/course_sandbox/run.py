@@ -4,7 +4,8 @@ RunSandbox (used by the trusted check, course_milestones.students): `prepare(com
 turns a student's command into one that runs inside the run's sandbox, with the student's own
 environment; `close()` ends every process in it. A watcher samples the sandbox twice a second:
 past the memory limit or near the process limit it ends the run's processes; near the CPU limit
-it notes the hit; the report (JSON, written by this trusted side) tells the grader which limit
+it notes the hit; every DISK_WATCH_INTERVAL_S it measures the student's work folder, and past
+its bound in total (course_sandbox.disk) it ends the run's processes; the report (JSON, written by this trusted side) tells the grader which limit
 the student's code hit.
 
 run_oneshot (used by the grader's build): a command in a sandbox of its own, to its end.
@@ -22,7 +23,7 @@ import threading
 import time
 from typing import Callable, Dict, Iterator, List, NamedTuple, Optional, Sequence, Set, Tuple
 
-from course_sandbox import commands, levels, procs
+from course_sandbox import commands, disk, levels, procs
 from course_sandbox.pids_cgroup import PidsCgroup
 from course_sandbox.access import identity, traverser
 from course_sandbox.policy import Policy
@@ -148,6 +149,7 @@ class RunSandbox:
         self._released = threading.Event()  # the keeper is gone: its holding thread may end
         self._watcher: Optional[threading.Thread] = None
         self._cgroup: Optional[PidsCgroup] = None
+        self._disk = disk.DiskMeter(policy.disk_folder, policy.limits.disk_bytes) if policy.disk_folder else None
 
     @property
     def level(self) -> str:
@@ -262,8 +264,12 @@ class RunSandbox:
                 self.end_processes()
                 self.write_report()
 
-    def _sample(self) -> bool:
-        """One look at the sandbox's processes (see judge_usage): True when they must end."""
+    def _sample(self, final: bool = False) -> bool:
+        """One look at the sandbox's processes (see judge_usage) and, each disk interval (or
+        `final`ly), at the student's files: True when the processes must end."""
+        if self._disk is not None and self._disk.over(float("inf") if final else None):
+            self.hits.note("disk", disk.sentence(self._disk.limit_bytes))
+            return True
         pids = self.processes()
         usages = [u for u in (procs.usage(pid) for pid in pids) if u is not None]
         counted = (Counted(self._cgroup.tasks(), self._cgroup.refusals()) if self._cgroup is not None else None)
@@ -328,7 +334,7 @@ class RunSandbox:
             self._watcher.join(5)
         # A last look before the end: a run can fail within a watch interval of hitting a limit
         # (a fork bomb that keeps the node from starting a thread), and the verdict must say so.
-        self._sample()
+        self._sample(final=True)
         with self._lock:
             if levels.uses_namespaces(self.level) or self._cgroup is not None:
                 # The processes first, so a stopped nsenter is continued and reaps its child: the
@@ -337,7 +343,7 @@ class RunSandbox:
                 self._kill_keeper()
             self._released.set()
             if self._cgroup is not None:
-                _remove_when_empty(self._cgroup)
+                self._cgroup.remove_when_empty(KEEPER_EXIT_S)
         self.write_report()
 
     def __enter__(self) -> "RunSandbox":
@@ -345,15 +351,6 @@ class RunSandbox:
 
     def __exit__(self, *exc) -> None:
         self.close()
-
-
-def _remove_when_empty(group: PidsCgroup, timeout: float = KEEPER_EXIT_S) -> None:
-    """Remove a run's pids cgroup once the processes killed in it are gone (a killed process
-    leaves its cgroup when it is reaped); left in place, empty of use, if one never goes."""
-    deadline = time.monotonic() + timeout
-    while not group.remove() and time.monotonic() < deadline:
-        procs.signal_all(group.members(), signal.SIGKILL)
-        time.sleep(0.01)
 
 
 def _collect(proc: subprocess.Popen, timeout: float) -> Tuple[Optional[int], bytes]:
@@ -393,14 +390,28 @@ def _collect(proc: subprocess.Popen, timeout: float) -> Tuple[Optional[int], byt
 
 
 def run_oneshot(policy: Policy, command: Sequence[str], cwd: str, env: Dict[str, str], log_path: str,
-                timeout: float) -> Optional[int]:
+                timeout: float, hits: Optional[LimitHits] = None) -> Optional[int]:
     """Run `command` (a build) in a sandbox of its own with output to `log_path`: its exit code,
-    or None past `timeout`. Nothing it started outlives it."""
+    or None past `timeout`. Nothing it started outlives it. Past the policy's disk bound in total
+    (`disk_folder`) its processes are ended and `hits` notes "disk"."""
     with open(log_path, "wb") as log, _oneshot(policy, command, cwd, env, stdout=log, stderr=subprocess.STDOUT) as proc:
+        stop = threading.Event()
+        meter = disk.DiskMeter(policy.disk_folder, policy.limits.disk_bytes) if policy.disk_folder else None
+
+        def over() -> None:
+            if hits is not None:
+                hits.note("disk", disk.sentence(policy.limits.disk_bytes))
+            procs.signal_all(procs.descendants(proc.pid) + [proc.pid], signal.SIGKILL)
+        if meter is not None:
+            disk.watch(meter, stop, over)
         try:
-            return proc.wait(timeout)
+            code = proc.wait(timeout)
         except subprocess.TimeoutExpired:
-            return None
+            code = None
+        stop.set()
+        if meter is not None and meter.over(float("inf")):
+            over()
+        return code
 
 
 def capture_oneshot(policy: Policy, command: Sequence[str], cwd: str, env: Dict[str, str],
@@ -425,7 +436,7 @@ def _oneshot(policy: Policy, command: Sequence[str], cwd: str, env: Dict[str, st
         procs.signal_all(procs.descendants(proc.pid) + [proc.pid], signal.SIGKILL)
         proc.wait()
         if group is not None:
-            _remove_when_empty(group)
+            group.remove_when_empty(KEEPER_EXIT_S)
 
 
 def end_user_processes(user: str, gid: int, rounds: int = 20) -> int:

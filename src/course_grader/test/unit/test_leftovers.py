@@ -50,3 +50,9 @@ def test_stale_cgroups_are_those_whose_maker_is_gone(tmp_path):
         (tmp_path / name).mkdir()
     assert [os.path.basename(g.path) for g in leftovers.stale_cgroups(str(tmp_path))] == ["%s%d-0" % (NAME_PREFIX, gone)]
     assert leftovers.stale_cgroups(None) == []
+
+
+def test_an_environment_marked_here_marks_this_process_only():
+    assert leftovers.is_marked(leftovers.marked({"A": "1"}))
+    assert not leftovers.is_marked({leftovers.GRADER_VAR: str(dead_pid())})
+    assert not leftovers.is_marked({})

@@ -27,14 +27,18 @@ import time
 import urllib.error
 import urllib.request
 import uuid
-from typing import Any, Dict, Mapping, Optional, Sequence, Tuple
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
+import tornado.httpclient
+import tornado.websocket
 from tornado.websocket import websocket_connect
 
 from course_testkit import isolation
 from course_testkit.nodes import find_executable
 from course_testkit.waiting import wait_for
 
+# The reference solutions' folders: never on a path of the student's terminals or desktop.
+REFERENCE_MARKERS = ("/solutions/", "/solutions_ws/", "/solutions:", "/solutions_ws:")
 START_TIMEOUT_S = 60.0
 STOP_TIMEOUT_S = 20.0
 REQUEST_TIMEOUT_S = 30.0
@@ -162,6 +166,75 @@ class Workbench:
     def terminal(self) -> "Terminal":
         name = self.api("POST", "/api/terminals")["name"]
         return Terminal(self, name)
+
+    # --- its processes --------------------------------------------------------------------------
+
+    def processes(self, word: str) -> List[Tuple[int, List[str]]]:
+        """(pid, command line) of the workbench's processes (its run token) whose command line names `word`."""
+        found = []
+        for pid in isolation.pids_with_token(self.run_token):
+            command = cmdline(pid)
+            if any(word in part for part in command):
+                found.append((pid, command))
+        return found
+
+
+def open_from_launcher(browser: Any, bench: Workbench, title: str, path: str) -> None:
+    """In `browser` (selenium), open JupyterLab, click the launcher's card named `title` and go to
+    the tab it opens, which must show `<base>/<path>` logged in by Jupyter's cookie alone (no token
+    in its URL). AssertionError saying what the launcher shows when there is no such card."""
+    from selenium.webdriver.common.by import By
+    browser.get("%s/lab?token=%s" % (bench.url, bench.token))
+
+    def card() -> Any:
+        for element in browser.find_elements(By.CSS_SELECTOR, ".jp-LauncherCard"):
+            if title in (element.get_attribute("title") or "") + element.text:
+                return element
+        return None
+    found = wait_for(card, START_TIMEOUT_S, 0.2)
+    assert found, "no '%s' card in JupyterLab's launcher; the launcher shows: %s" % (
+        title, [e.text for e in browser.find_elements(By.CSS_SELECTOR, ".jp-LauncherCard")])
+    lab_tab = browser.current_window_handle
+    found.click()
+    assert wait_for(lambda: len(browser.window_handles) == 2, REQUEST_TIMEOUT_S, 0.1), "the card opened no tab"
+    browser.switch_to.window([h for h in browser.window_handles if h != lab_tab][0])
+    assert wait_for(lambda: browser.current_url.startswith("%s/%s" % (bench.url, path)), REQUEST_TIMEOUT_S, 0.1), \
+        browser.current_url
+    assert "token=" not in browser.current_url  # Jupyter's login cookie is what lets it in
+
+
+def cmdline(pid: int) -> List[str]:
+    """A process's command line ([] once it is gone)."""
+    try:
+        with open("/proc/%d/cmdline" % pid, "rb") as f:
+            return [part.decode(errors="replace") for part in f.read().split(b"\0") if part]
+    except OSError:
+        return []
+
+
+def environ(pid: int) -> Dict[str, str]:
+    """A process's environment ({} once it is gone)."""
+    try:
+        with open("/proc/%d/environ" % pid, "rb") as f:
+            entries = [part.decode(errors="replace") for part in f.read().split(b"\0") if b"=" in part]
+    except OSError:
+        return {}
+    return dict(entry.split("=", 1) for entry in entries)
+
+
+def refused_websocket(url: str) -> Optional[int]:
+    """The HTTP status that refused the websocket handshake at `url` (-1: refused after it; None:
+    accepted)."""
+    async def connect() -> Optional[int]:
+        try:
+            socket = await tornado.websocket.websocket_connect(url, connect_timeout=REQUEST_TIMEOUT_S)
+        except tornado.websocket.WebSocketError:
+            return -1
+        except tornado.httpclient.HTTPClientError as err:
+            return err.code
+        socket.close()
+        return None
+    return asyncio.run(connect())
 
 
 class _NoRedirect(urllib.request.HTTPRedirectHandler):

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from course_testkit.browser import chromium, require_browser
 from course_testkit.waiting import wait_for
-from course_testkit.workbench import Workbench
+from course_testkit.workbench import Workbench, open_from_launcher
 
 require_browser()
 
@@ -33,25 +33,8 @@ def is_red(pixel) -> bool:
 
 
 def test_the_launcher_opens_the_lab_page_which_follows_the_students_master():
-    from selenium.webdriver.common.by import By
-
     with Workbench() as bench, chromium() as browser:
-        browser.get("%s/lab?token=%s" % (bench.url, bench.token))
-
-        def card():
-            for element in browser.find_elements(By.CSS_SELECTOR, ".jp-LauncherCard"):
-                if LAUNCHER_TITLE in (element.get_attribute("title") or "") + element.text:
-                    return element
-            return None
-        found = wait_for(card, 60, 0.2)
-        assert found, "no '%s' card in JupyterLab's launcher; the launcher shows: %s" % (
-            LAUNCHER_TITLE, [e.text for e in browser.find_elements(By.CSS_SELECTOR, ".jp-LauncherCard")])
-        lab_tab = browser.current_window_handle
-        found.click()
-        assert wait_for(lambda: len(browser.window_handles) == 2, 30, 0.1), "the card opened no tab"
-        browser.switch_to.window([h for h in browser.window_handles if h != lab_tab][0])
-        assert wait_for(lambda: browser.current_url.startswith(bench.url + "/roslab/"), 30, 0.1), browser.current_url
-        assert "token=" not in browser.current_url  # Jupyter's login cookie is what lets it in
+        open_from_launcher(browser, bench, LAUNCHER_TITLE, "roslab/")
 
         def state():
             return browser.execute_script(PAGE_STATE) or {"state": None, "closings": 0, "frames": 0, "pixel": None}

@@ -5,20 +5,16 @@ until the student starts a master, then on the student's.
 Each test has a workbench of its own (a fresh home, a student master URI on a free port)."""
 from __future__ import annotations
 
-import asyncio
 import re
 import urllib.error
 import urllib.request
 from typing import List, Optional, Tuple
 
 import pytest
-import tornado.httpclient
-import tornado.websocket
 
-from course_testkit.isolation import pids_with_token
 from course_testkit.rosbridge import drive_turtle
 from course_testkit.waiting import wait_for
-from course_testkit.workbench import Workbench
+from course_testkit.workbench import Workbench, refused_websocket
 
 PAGE_TITLE = "<title>The lab in a browser</title>"
 
@@ -29,17 +25,9 @@ def bench():
         yield workbench
 
 
-def cmdline(pid: int) -> List[str]:
-    try:
-        with open("/proc/%d/cmdline" % pid, "rb") as f:
-            return [part.decode(errors="replace") for part in f.read().split(b"\0") if part]
-    except OSError:
-        return []
-
-
 def processes(bench: Workbench, word: str) -> List[List[str]]:
     """The command lines of the workbench's processes that name `word`."""
-    return [c for c in map(cmdline, pids_with_token(bench.run_token)) if any(word in part for part in c)]
+    return [command for _, command in bench.processes(word)]
 
 
 def lab_view_port(bench: Workbench) -> Optional[int]:
@@ -52,20 +40,6 @@ def lab_view_port(bench: Workbench) -> Optional[int]:
 def open_page(bench: Workbench) -> Tuple[int, str]:
     status, data, _ = bench.request("GET", "/roslab/")
     return status, data.decode(errors="replace")
-
-
-def refused_websocket(url: str) -> Optional[int]:
-    """The HTTP status that refused the websocket handshake (None if it was accepted)."""
-    async def connect() -> Optional[int]:
-        try:
-            socket = await tornado.websocket.websocket_connect(url, connect_timeout=20)
-        except tornado.websocket.WebSocketError:
-            return -1
-        except tornado.httpclient.HTTPClientError as err:
-            return err.code
-        socket.close()
-        return None
-    return asyncio.run(connect())
 
 
 def test_the_lab_page_is_behind_jupyters_login_and_drives_its_own_turtle(bench):

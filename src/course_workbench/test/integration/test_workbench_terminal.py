@@ -15,7 +15,7 @@ import tempfile
 import pytest
 
 from course_testkit.nodes import find_executable
-from course_testkit.workbench import Workbench
+from course_testkit.workbench import REFERENCE_MARKERS, Workbench
 
 TALKER = '''#!/usr/bin/env python3
 """Publishes a counted greeting on %(topic)s, ten times a second."""
@@ -55,8 +55,6 @@ if __name__ == "__main__":
     rospy.Subscriber("/chatter_talk", String, heard)
     rospy.spin()
 '''
-# The reference solutions' folders: never on a path of the student's terminal.
-REFERENCE_MARKERS = ("/solutions/", "/solutions_ws/", "/solutions:", "/solutions_ws:")
 
 
 @pytest.fixture(scope="module")

@@ -29,13 +29,17 @@ class ApiError(ValueError):
 
 
 class Master(Protocol):
-    """The two questions asked of the ROS master (rosgraph.Master answers both)."""
+    """The questions asked of the ROS master (rosgraph.Master answers them), and whether a node
+    answers (its own XML-RPC server)."""
 
     def system_state(self) -> Sequence[Sequence]:
         """getSystemState(): [publishers, subscribers, services], each [name, [nodes]] rows."""
 
     def topic_types(self) -> Mapping[str, str]:
         """getTopicTypes() as topic -> type."""
+
+    def node_answers(self, name: str) -> bool:
+        """Whether the node `name` answers (it may be registered yet dead)."""
 
 
 def graph(master: Master, show_debug: bool = False) -> Json:
@@ -97,8 +101,11 @@ def health(master: Master, image_topic: Optional[str]) -> Json:
         return {"state": "no-master", "topic": topic,
                 "says": "%s%s. Start it again (roscore): the page follows it when it is back."
                         % (str(err)[:1].upper(), str(err)[1:].rstrip("."))}
-    if not publishers.get(topic):
+    registered = sorted(publishers.get(topic) or [])
+    alive = [node for node in registered if master.node_answers(node)]
+    if not alive:
+        silent = " (%s is still registered, but does not answer)" % ", ".join(registered) if registered else ""
         return {"state": "no-publisher", "topic": topic,
-                "says": "No node publishes %s: turtlesim is not running. Start it (rosrun turtlesim "
-                        "turtlesim_node): the canvas comes back with it." % topic}
-    return {"state": "ok", "topic": topic, "says": "", "publishers": sorted(publishers[topic])}
+                "says": "No node publishes %s%s: turtlesim is not running. Start it (rosrun turtlesim "
+                        "turtlesim_node): the canvas comes back with it." % (topic, silent)}
+    return {"state": "ok", "topic": topic, "says": "", "publishers": alive}

@@ -25,6 +25,9 @@ class FakeMaster:
     def topic_types(self):
         return dict(TYPES)
 
+    def node_answers(self, name):
+        return True
+
 
 class DeadMaster:
     def system_state(self):

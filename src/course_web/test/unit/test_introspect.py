@@ -18,11 +18,16 @@ TYPES = {"/turtle1/pose": "turtlesim/Pose", "/turtle1/cmd_vel": "geometry_msgs/T
 
 
 class FakeMaster:
+    dead = ()  # nodes registered that do not answer
+
     def system_state(self):
         return STATE
 
     def topic_types(self):
         return dict(TYPES)
+
+    def node_answers(self, name):
+        return name not in self.dead
 
 
 def test_graph_is_rqt_graphs_default_view():
@@ -111,6 +116,9 @@ def test_health_says_in_words_that_the_master_or_turtlesim_is_gone():
     gone = introspect.health(NoTurtlesim(), "turtlesim/image")
     assert gone["state"] == "no-publisher" and gone["topic"] == "/turtlesim/image"
     assert "turtlesim is not running" in gone["says"] and "rosrun turtlesim turtlesim_node" in gone["says"]
+    master.dead = ("/turtlesim",)  # killed by a signal rospy does not catch: registered, silent
+    silent = introspect.health(master, "/turtlesim/image")
+    assert silent["state"] == "no-publisher" and "/turtlesim is still registered, but does not answer" in silent["says"]
     down = introspect.health(DownMaster(), "/turtlesim/image")
     assert down["state"] == "no-master"
     assert down["says"].startswith("The ROS master at http://localhost:11311 does not answer")

@@ -83,8 +83,9 @@ def test_the_launcher_opens_the_lab_page_which_follows_the_students_master():
             assert wait_for(lambda: state()["frames"] >= now["frames"] + 10, 30, 0.2)  # ... and frames flow
             assert wait_for(lambda: browser.execute_script(HEALTH)[0] == "ok", 30, 0.2), browser.execute_script(HEALTH)
 
-            # the student stops their turtlesim, then their master: the header says so, in words
-            term.run("kill %2; wait %2")
+            # the student's turtlesim killed (SIGKILL: it stays registered, silent), then their master
+            # stopped: the header says so, in words
+            term.run("kill -KILL %2; wait %2")
             assert wait_for(lambda: browser.execute_script(HEALTH)[0] == "no-publisher", 30, 0.2), \
                 browser.execute_script(HEALTH)
             assert "turtlesim is not running" in browser.execute_script(HEALTH)[1]

@@ -14,13 +14,17 @@ import io
 import os
 import shutil
 import tempfile
+from typing import Dict
 
 import pytest
 
+from course_sandbox import env_paths
 from course_testkit.browser import chromium, require_browser
+from course_testkit.isolation import pids_with_token
+from course_testkit.jupyter import refused_websocket
 from course_testkit.screen import colour_share, colour_stats
 from course_testkit.waiting import wait_for
-from course_testkit.workbench import REFERENCE_MARKERS, Workbench, environ, open_from_launcher, refused_websocket
+from course_testkit.workbench import REFERENCE_MARKERS, Workbench, open_from_launcher
 from course_testkit.xwindows import XWindow, largest_titled, shown_windows
 from course_workbench.startup import DISPLAY_FILE_VAR
 from turtlesim.constants import DEFAULT_BACKGROUND_RGB
@@ -67,6 +71,20 @@ def test_the_desktop_and_its_websocket_are_behind_jupyters_login(bench):
     assert refused_websocket(ws + "?token=not-the-token") == 403
 
 
+def window_manager_env(bench: Workbench) -> Dict[str, str]:
+    """The environment of the desktop's window manager (the X session's): {} before it runs."""
+    for pid in pids_with_token(bench.run_token):
+        try:
+            with open("/proc/%d/cmdline" % pid, "rb") as f:
+                if os.path.basename(f.read().split(b"\0")[0]) != b"jwm":
+                    continue
+            with open("/proc/%d/environ" % pid, "rb") as f:
+                return dict(e.decode(errors="replace").split("=", 1) for e in f.read().split(b"\0") if b"=" in e)
+        except OSError:
+            continue
+    return {}
+
+
 def overlap(a: XWindow, b: XWindow) -> bool:
     return a.x < b.x + b.width and b.x < a.x + a.width and a.y < b.y + b.height and b.y < a.y + a.height
 
@@ -100,14 +118,11 @@ def test_the_launchers_desktop_shows_turtlesim_and_rviz_started_in_a_terminal(be
         assert "[%s]" % display in said, (display, said)
 
         # the X session: the course and the student's overlay sourced, no reference solution
-        sessions = wait_for(lambda: [pid for pid, command in bench.processes("jwm")
-                                     if os.path.basename(command[0]) == "jwm"], 30, 0.1)
-        assert sessions, "no window manager on the desktop: %s" % bench.processes("")
-        session = environ(sessions[0])
-        package_path = session.get("ROS_PACKAGE_PATH", "")
-        assert os.path.join(bench.home, "catkin_ws", "src") in package_path.split(":"), package_path
-        paths = "".join(session.get(v, "") + ":" for v in ("PATH", "ROS_PACKAGE_PATH", "PYTHONPATH",
-                                                           "CMAKE_PREFIX_PATH", "LD_LIBRARY_PATH"))
+        session = wait_for(lambda: window_manager_env(bench), 30, 0.1)
+        assert session, "no window manager on the desktop: %s" % bench.processes("")
+        package_path = session.get("ROS_PACKAGE_PATH", "").split(":")
+        assert os.path.join(bench.home, "catkin_ws", "src") in package_path, package_path
+        paths = "".join(session.get(var, "") + ":" for var in env_paths.FOLDER_LISTS)
         assert not [m for m in REFERENCE_MARKERS if m in paths], paths
 
         code, said = term.run("roslaunch turtle_tf2 turtle_tf2_demo.launch rviz:=true > ~/demo.log 2>&1 &")

@@ -27,6 +27,7 @@ START_TIMEOUT_S = 60.0
 # The reference solutions' folders: never on a path of the student's terminals or desktop.
 REFERENCE_MARKERS = ("/solutions/", "/solutions_ws/", "/solutions:", "/solutions_ws:")
 TAB_TIMEOUT_S = 30.0  # a launcher card's new tab, at its page
+SPLASH_ID = "jupyterlab-splash"  # JupyterLab's loading screen
 WorkbenchError = JupyterError
 __all__ = ["Workbench", "WorkbenchError", "Terminal", "open_from_launcher"]
 
@@ -128,6 +129,10 @@ def open_from_launcher(browser: Any, bench: Workbench, title: str, path: str) ->
     browser.get("%s/lab?token=%s" % (bench.url, bench.token))
 
     def card() -> Any:
+        # JupyterLab's splash screen covers the launcher until the page has loaded: a click on a
+        # card behind it lands on the splash (ElementClickInterceptedException)
+        if browser.find_elements(By.ID, SPLASH_ID):
+            return None
         for element in browser.find_elements(By.CSS_SELECTOR, ".jp-LauncherCard"):
             if title in (element.get_attribute("title") or "") + element.text:
                 return element

@@ -37,6 +37,7 @@ for _tool, _package in (("vncserver", "tigervnc-standalone-server"), ("jwm", "jw
 
 LAUNCHER_TITLE = "Desktop"  # jupyter-remote-desktop-proxy's launcher entry
 PAGE_TITLE = "<title>Jupyter Remote Desktop Proxy</title>"
+VIEWER_SCRIPT = "/desktop/static/dist/viewer.js"
 # Wide and tall enough that the desktop (noVNC resizes it to the page) holds the xterm, turtlesim
 # and rviz side by side: JWM places new windows where they overlap none.
 WINDOW = (1800, 1500)
@@ -66,6 +67,9 @@ def test_the_desktop_and_its_websocket_are_behind_jupyters_login(bench):
         assert status in (302, 403) and PAGE_TITLE not in data.decode(errors="replace"), status
         if status == 302:
             assert "/login" in headers.get("Location", "")
+    assert bench.status(VIEWER_SCRIPT) == 200  # noVNC itself, served by the package behind the login too
+    assert bench.status(VIEWER_SCRIPT, token=None) in (302, 403)
+    assert bench.status(VIEWER_SCRIPT, token="not-the-token") in (302, 403)
     ws = "ws://127.0.0.1:%d/desktop-websockify/" % bench.port
     assert refused_websocket(ws) == 403
     assert refused_websocket(ws + "?token=not-the-token") == 403

@@ -8,9 +8,17 @@
 - Memory, PSS summed over every process of the workbench (course_sandbox.procs): idle (JupyterLab
   alone, after start-up); with one terminal open; with the lab page open (its own master,
   turtlesim at 30 fps, lab_view, roslab). Target idle <= 400 MiB.
+- --frame-rate: the lab page's canvas frames per second as its websocket receives them (subscribed
+  as the page subscribes), through JupyterLab's proxy (`<base>/roslab/websocket`,
+  jupyter-server-proxy) and direct (lab_view's own port), alternately for --rounds rounds of
+  --seconds each; both rates and their ratio. Target: through the proxy >= 90 % of direct.
+- --desktop: memory with the desktop open (headless chromium on <base>/desktop/: TigerVNC, JWM, an
+  xterm), then 004's demo with rviz on it, then the lab page on the student's master; and by program.
 
 Run from a sourced workspace:
     python3 bench/workbench_bench.py [--runs 5] [--direct]
+    python3 bench/workbench_bench.py --frame-rate [--seconds 10] [--rounds 3]
+    python3 bench/workbench_bench.py --desktop
 """
 from __future__ import annotations
 
@@ -22,16 +30,18 @@ import sys
 import tempfile
 import time
 from pathlib import Path
-from typing import List, Optional, Sequence
+from typing import Dict, List, Optional, Sequence
 
 from course_sandbox.procs import proportional_bytes
 from course_testkit.isolation import pids_with_token
+from course_testkit.rosbridge import frame_rate
 from course_testkit.waiting import wait_for
 from course_testkit.workbench import Workbench
 
 ROOT = Path(__file__).resolve().parents[1]
 TARGET_START_S = 10.0
 TARGET_IDLE_MIB = 400.0
+TARGET_PROXY_RATIO = 0.90
 SETTLE_S = 3.0  # let JupyterLab's start-up work (extension loading, language-server scan) end
 
 
@@ -78,18 +88,105 @@ def memory() -> None:
             term.run("true")
             print("memory, with a terminal open: %.0f MiB PSS" % workbench_mib(bench), flush=True)
             assert bench.status("/roslab/") == 200
-            wait_for(lambda: any("turtlesim" in open("/proc/%d/cmdline" % p, "rb").read().decode(errors="replace")
-                                 for p in pids_with_token(bench.run_token) if os.path.exists("/proc/%d" % p)), 30)
+            wait_for(lambda: bench.processes("turtlesim"), 30)
             time.sleep(SETTLE_S)
             print("memory, with the lab page (its master, turtlesim at 30 fps, lab_view, roslab) and the terminal: "
                   "%.0f MiB PSS" % workbench_mib(bench), flush=True)
+
+
+def program_mib(bench: Workbench) -> Dict[str, float]:
+    """PSS (MiB) of the workbench's processes by program: the executable's name, or for python3 and
+    perl the script's."""
+    found: Dict[str, float] = {}
+    for pid in pids_with_token(bench.run_token):
+        try:
+            with open("/proc/%d/cmdline" % pid, "rb") as f:
+                words = [w.decode(errors="replace") for w in f.read().split(b"\0") if w]
+        except OSError:
+            continue
+        names = [os.path.basename(w) for w in words[:3] if not w.startswith("-")]
+        name = next((n for n in names[1:] if names[0].startswith(("python", "perl"))), None) \
+            or (names[0] if names else "?")
+        found[name] = found.get(name, 0.0) + (proportional_bytes(pid) or 0) / 2 ** 20
+    return found
+
+
+def desktop_memory() -> None:
+    """Memory with the desktop (<base>/desktop/) open in headless chromium: TigerVNC's X server,
+    JWM, the desktop's xterm; then 004's demo with rviz on it (the student's master, turtlesim's
+    window, the broadcasters, rviz), then the lab page following that master. Chromium is not the
+    workbench's and is not counted."""
+    from course_testkit.browser import chromium
+    from course_testkit.xwindows import largest_titled, x_windows
+
+    with Workbench() as bench, chromium(window=(1800, 1500)) as browser:
+        time.sleep(SETTLE_S)
+        print("memory, idle workbench (JupyterLab): %.0f MiB PSS" % workbench_mib(bench), flush=True)
+        browser.get("%s/desktop/?token=%s" % (bench.url, bench.token))
+        connected = wait_for(lambda: browser.execute_script(
+            "const s = document.getElementById('status'); return s && s.textContent") == "Connected", 60, 0.2)
+        assert connected, "the desktop did not connect"
+        wait_for(lambda: bench.processes("xterm") and bench.processes("jwm"), 30)
+        time.sleep(SETTLE_S)
+        print("memory, with the desktop open (TigerVNC, JWM, its xterm): %.0f MiB PSS" % workbench_mib(bench),
+              flush=True)
+        with bench.terminal() as term:
+            display = term.run('echo "[$DISPLAY]"')[1].split("[", 1)[1].split("]", 1)[0]
+            term.run("roslaunch turtle_tf2 turtle_tf2_demo.launch rviz:=true > ~/demo.log 2>&1 &")
+            xauthority = os.path.join(bench.home, ".Xauthority")
+            shown = wait_for(lambda: all(largest_titled(x_windows(display, xauthority), t) for t in ("TurtleSim", "RViz")),
+                             120, 0.5)
+            assert shown, "turtlesim's and rviz's windows did not show on %s" % display
+            time.sleep(2 * SETTLE_S)  # rviz loads its plugins and draws
+            print("memory, with 004's demo on the desktop (its master, turtlesim's window, two broadcasters, the "
+                  "follower, rviz) and a terminal: %.0f MiB PSS" % workbench_mib(bench), flush=True)
+            assert bench.status("/roslab/") == 200
+            wait_for(bench.lab_view_port, 60)
+            wait_for(lambda: "/workbench_lab_view" in term.run("rosnode list 2>&1")[1], 60, 0.5)
+            time.sleep(SETTLE_S)
+            print("memory, and the lab page on the student's master (roslab, lab_view): %.0f MiB PSS"
+                  % workbench_mib(bench), flush=True)
+            ranked = sorted(program_mib(bench).items(), key=lambda item: -item[1])
+            print("memory by program: %s" % ", ".join("%s %.0f" % item for item in ranked if item[1] >= 1), flush=True)
+            term.run("kill %1; wait")
+
+
+def frame_rates(seconds: float, rounds: int) -> None:
+    with Workbench() as bench:
+        assert bench.status("/roslab/") == 200  # roslab starts: its master, turtlesim, lab_view
+        port = wait_for(bench.lab_view_port, 30)
+        ways = {"direct (lab_view's port)": "ws://127.0.0.1:%d/websocket?token=%s" % (port, bench.token),
+                "through the proxy (/roslab/websocket)": "ws://127.0.0.1:%d/roslab/websocket?token=%s"
+                % (bench.port, bench.token)}
+        rates: Dict[str, List[float]] = {way: [] for way in ways}
+        for _ in range(rounds):  # alternately, so that the machine's other load falls on both
+            for way, url in ways.items():
+                rates[way].append(frame_rate(url, seconds))
+        for way, found in rates.items():
+            print("frame rate, %s: median %.1f fps (%s)" % (way, statistics.median(found),
+                                                           ", ".join("%.1f" % r for r in found)), flush=True)
+        direct, proxied = (statistics.median(found) for found in rates.values())
+        print("frame rate through the proxy / direct: %.0f %% (target >= %.0f %%), %d rounds of %.0f s each way"
+              % (100 * proxied / direct, 100 * TARGET_PROXY_RATIO, rounds, seconds), flush=True)
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--runs", type=int, default=5)
     parser.add_argument("--direct", action="store_true", help="the start-up command alone, without make")
+    parser.add_argument("--frame-rate", action="store_true", help="only the lab page's frame rate through the "
+                        "proxy against direct")
+    parser.add_argument("--seconds", type=float, default=10.0, help="--frame-rate: each measurement's length")
+    parser.add_argument("--rounds", type=int, default=3, help="--frame-rate: measurements each way")
+    parser.add_argument("--desktop", action="store_true", help="only the memory with the desktop, turtlesim, rviz "
+                        "and the lab page")
     args = parser.parse_args(argv)
+    if args.desktop:
+        desktop_memory()
+        return 0
+    if args.frame_rate:
+        frame_rates(args.seconds, args.rounds)
+        return 0
     command = None if args.direct else ["make", "--no-print-directory", "-C", str(ROOT), "jupyter"]
     startup(args.runs, command)
     memory()

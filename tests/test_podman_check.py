@@ -51,3 +51,22 @@ def test_the_zip_is_unpacked_with_its_modes(tmp_path):
     podman_check.unpack_zip(archive, tmp_path / "source")
     assert (tmp_path / "source" / "setup.sh").stat().st_mode & 0o777 == 0o755
     assert (tmp_path / "source" / "src" / "readme.txt").read_text() == "x"
+
+
+def test_the_image_tags_come_from_the_environment(monkeypatch):
+    monkeypatch.setenv("COURSE_IMAGE", "localhost/ros-course-mine")
+    monkeypatch.setenv("INSTRUCTOR_IMAGE", "localhost/ros-course-mine-instructor")
+    again = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(again)
+    assert (again.COURSE_IMAGE, again.INSTRUCTOR_IMAGE) == ("localhost/ros-course-mine",
+                                                            "localhost/ros-course-mine-instructor")
+    assert podman_check.COURSE_IMAGE == "localhost/ros-course"  # the default, without them
+
+
+def test_each_check_prints_one_line_and_any_failure_fails_them_all(capsys):
+    check = podman_check.Checks("jupyter")
+    assert check(True, "a") and check.ok
+    assert not check(False, "b") and not check.ok
+    assert check(True, "c") and not check.ok
+    lines = capsys.readouterr().out.splitlines()
+    assert [line.split()[:2] for line in lines] == [["jupyter:", "ok"], ["jupyter:", "FAILED"], ["jupyter:", "ok"]]

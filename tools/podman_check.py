@@ -22,6 +22,7 @@ import argparse
 import json
 import os
 import re
+import secrets
 import shutil
 import subprocess
 import sys
@@ -34,15 +35,19 @@ from typing import Dict, List, Optional, Sequence, Tuple
 ROOT = Path(__file__).resolve().parents[1]
 # course_testkit's rosbridge driver needs tornado alone, which Debian's python3 has.
 sys.path.insert(0, str(ROOT / "src" / "course_testkit" / "src"))
+from course_testkit import student_lab  # noqa: E402
+from course_testkit.jupyter import JupyterError, JupyterServer, refused_websocket  # noqa: E402
 from course_testkit.rosbridge import drive_turtle  # noqa: E402
 # course_net is the standard library alone: imported by path, as Debian's python3 runs this
 # without ROS sourced (course_testkit.isolation, which re-exports it, needs course_sandbox).
 sys.path.insert(0, str(ROOT / "src" / "course_net" / "src"))
 from course_net.ports import free_port  # noqa: E402
+from course_testkit.waiting import wait_for  # noqa: E402
 PODMAN = ["podman", "--runtime", "runc", "--cgroup-manager=cgroupfs"]
 BASE_IMAGE = "debian:bookworm"
-COURSE_IMAGE = "localhost/ros-course"  # the student image (the Dockerfile's default target)
-INSTRUCTOR_IMAGE = "localhost/ros-course-instructor"  # --target instructor: with the reference solutions
+# The images' tags: $COURSE_IMAGE and $INSTRUCTOR_IMAGE name others (a second checkout's, say).
+COURSE_IMAGE = os.environ.get("COURSE_IMAGE") or "localhost/ros-course"  # the student image (the default target)
+INSTRUCTOR_IMAGE = os.environ.get("INSTRUCTOR_IMAGE") or "localhost/ros-course-instructor"  # with the answers
 AUTOGRADER_IMAGE = "localhost/ros-course-autograder"
 CONTAINERS_CONF = Path("/etc/containers/containers.conf")
 HOST_CA = Path("/etc/ssl/certs/ca-certificates.crt")
@@ -51,6 +56,8 @@ PACKAGES = ("podman", "runc", "debootstrap")
 # (sample, what it is, passed?) graded by run_autograder on the milestone `chatter`.
 AUTOGRADER_SAMPLES = (("lab2_chatter_scripts", "correct", True), ("bad_crash", "buggy", False),
                       ("bad_build_error", "does not build", False), ("attack_forge_results", "attack", False))
+JUPYTER_START_S = 120.0  # the limit for `make jupyter` in a container to answer
+TARGET_START_S = 10.0  # the issue's target for `docker run` to a usable JupyterLab
 VISIBILITY = {"hidden", "after_due_date", "after_published", "visible"}
 MIN_ANSWER_BYTES = 64  # smaller files (an empty __init__.py, a one-line .msg) are common to any package
 
@@ -238,6 +245,8 @@ def docker_check(opts: argparse.Namespace, steps: Steps, scratch: Path, logs: Pa
     ok &= steps.run("no reference solution in the student image", student_image_has_no_answers,
                     logs / "answers.log")
     ok &= steps.run("lab page through a published port", lab_check, logs / "lab.log")
+    ok &= steps.run("make jupyter through a published port, as user student", jupyter_check, scratch,
+                    logs / "jupyter.log")
     code = steps.run("make grade (the reference) in the instructor image, as user student", run_in_image,
                      INSTRUCTOR_IMAGE, ["make", "grade", "GRADES=/tmp/grades"], logs / "grade-reference.log")
     print("make grade: exit %s; %s" % (code, last_line(logs / "grade-reference.log", r"^\[1/1\] reference")),
@@ -306,6 +315,106 @@ def lab_check(log: Path) -> bool:
     finally:
         podman("logs", name, check=False, log=log)
         remove_container(name)
+
+
+def image_uid(image: str) -> int:
+    """The uid the image's user has (the volume is handed to it, as a student's own folder is theirs)."""
+    return int(podman("run", "--rm", "--network", "none", "--entrypoint", "id", image, "-u",
+                      stdout=subprocess.PIPE, text=True).stdout.strip())
+
+
+class Checks:
+    """One printed line per check, and whether all passed."""
+
+    def __init__(self, prefix: str) -> None:
+        self.prefix, self.ok = prefix, True
+
+    def __call__(self, passed: bool, line: str) -> bool:
+        self.ok &= bool(passed)
+        print("%s: %s %s" % (self.prefix, "ok    " if passed else "FAILED", line), flush=True)
+        return bool(passed)
+
+
+def usable_after(server: JupyterServer, began: float, name: str) -> Optional[float]:
+    """Seconds from `began` until the server's REST API answers and a new terminal runs a command;
+    None when the container ends or JUPYTER_START_S passes first."""
+    polls = iter(range(1 << 30))
+
+    def answering() -> bool:
+        if server.status("/api/status") == 200:
+            return True
+        if next(polls) % 40 == 39:  # now and then (podman is slow to ask): has the container ended?
+            running = podman("container", "inspect", "-f", "{{.State.Running}}", name, check=False,
+                             stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True).stdout.strip()
+            if running != "true":
+                raise JupyterError("the container %s stopped" % name)
+        return False
+    if not wait_for(answering, JUPYTER_START_S, 0.05):
+        return None
+    with server.terminal() as term:
+        term.run("true")
+    return time.monotonic() - began
+
+
+def jupyter_check(scratch: Path, log: Path) -> bool:
+    """`make jupyter` in the student image as its README says (the port published on the host's
+    loopback, the student's folder mounted as ~/catkin_ws/src, JUPYTER_TOKEN set), then through
+    the published port what the workbench's tests do on the host: a lab in a terminal and the
+    contents API, the self-check passing it and failing a buggy copy with its reason, the lab
+    page and its websocket, and a wrong or missing token refused. One line per check."""
+    check = Checks("jupyter")
+    work = scratch / "work"
+    work.mkdir()
+    uid = image_uid(COURSE_IMAGE)
+    os.chown(work, uid, uid)
+    port, token, name = free_port(), secrets.token_hex(16), "ros-course-jupyter-check"
+    server = JupyterServer(port, token)
+    remove_container(name)
+    began = time.monotonic()
+    podman("run", "-d", "--name", name, "-p", "127.0.0.1:%d:8888" % port, "-e", "JUPYTER_TOKEN",
+           "-v", "%s:/home/student/catkin_ws/src" % work, COURSE_IMAGE, "make", "jupyter", log=log,
+           env=dict(os.environ, JUPYTER_TOKEN=token))
+    try:
+        usable = usable_after(server, began, name)
+        if not check(usable is not None, "podman run to a usable JupyterLab (REST answers, a terminal runs a "
+                     "command): %s (target <= %.0f s)" % ("%.1f s" % usable if usable else "never", TARGET_START_S)):
+            return False
+        with server.terminal() as term:
+            student_lab.make_chatter(server, term)  # each step must succeed, or JupyterError
+            talker = work / "chatter" / "scripts" / "talker.py"
+            check(talker.exists() and talker.stat().st_uid == uid,
+                  "catkin_create_pkg chatter rospy std_msgs in a terminal, the talker and the listener through the "
+                  "contents API, catkin_make: built; %s on the host's folder, owner uid %s"
+                  % (talker.relative_to(work), talker.stat().st_uid if talker.exists() else "-"))
+            code, said = term.run("course-check", student_lab.CHECK_TIMEOUT_S)
+            isolation = re.search(r"isolation: [^\n]*", said)
+            check(code == 0 and student_lab.PASSED in said, "course-check: exit %d, %r; %s" % (
+                code, student_lab.PASSED if student_lab.PASSED in said else said[-300:],
+                isolation.group(0)[:80] if isolation else "no isolation line"))
+            buggy = student_lab.make_buggy_copy(server, term)
+            code, said = term.run("course-check ~/%s --out ~/buggy-check" % buggy, student_lab.CHECK_TIMEOUT_S)
+            check(code == 1 and student_lab.FAILED in said and student_lab.BUGGY_REASON in said,
+                  "course-check of a talker on the wrong topic: exit %d, %s" % (
+                      code, "FAIL with '%s'" % student_lab.BUGGY_REASON if student_lab.BUGGY_REASON in said
+                      else said[-300:]))
+        status, page, _ = server.request("GET", "/roslab/")
+        check(status == 200 and b"<html" in page.lower(), "/roslab/ with the token -> %d" % status)
+        ws = "ws://127.0.0.1:%d/roslab/websocket" % port
+        before, after = drive_turtle("%s?token=%s" % (ws, token))
+        check(after - before > 1.0, "turtle1 x %.2f -> %.2f driven through /roslab/websocket" % (before, after))
+        refused = {"/api/contents, wrong token": server.status("/api/contents", token="not-the-token"),
+                   "/api/contents, no token": server.status("/api/contents", token=None),
+                   "/roslab/, wrong token": server.status("/roslab/", token="not-the-token"),
+                   "/roslab/websocket, wrong token": refused_websocket(ws + "?token=not-the-token"),
+                   "/roslab/websocket, no token": refused_websocket(ws)}
+        check(all(code in (302, 401, 403) for code in refused.values()), "refused: " + ", ".join(
+            "%s -> %s" % (what, code) for what, code in refused.items()))
+    except (JupyterError, OSError) as err:
+        check(False, "%s" % str(err)[-2000:])
+    finally:
+        podman("logs", name, check=False, log=log)
+        remove_container(name)
+    return check.ok
 
 
 def unpack_zip(zip_path: Path, target: Path) -> None:

@@ -1,5 +1,6 @@
-"""Drive turtlesim through a rosbridge v2 websocket, as the lab page's teleop panel does (the
-page's own server, or the page behind a proxy). Needs tornado alone (Debian's python3-tornado),
+"""Drive turtlesim through a rosbridge v2 websocket, as the lab page's teleop panel does, and count
+the canvas frames it receives, as the page's canvas panel subscribes to them (the page's own
+server, or the page behind a proxy). Needs tornado alone (Debian's python3-tornado),
 no rospy: tools/podman_check.py runs it with Debian's python3 outside the workspace."""
 from __future__ import annotations
 
@@ -42,3 +43,37 @@ def drive_turtle(ws_url: str, speed: float = 2.0) -> Tuple[float, float]:
         socket.close()
         return before, after
     return asyncio.run(drive())
+
+
+def frame_rate(ws_url: str, seconds: float, topic: str = "/turtlesim/image") -> float:
+    """Image frames per second that arrive through the websocket at `ws_url`, subscribed to as the
+    page's canvas panel subscribes (JPEG binary frames, queue_length 1), counted for `seconds`
+    from the first frame."""
+    async def count() -> float:
+        socket = await tornado.websocket.websocket_connect(ws_url, connect_timeout=TIMEOUT_S,
+                                                          max_message_size=1 << 26)
+        await socket.write_message(json.dumps({"op": "subscribe", "id": "frames", "topic": topic,
+                                               "type": "sensor_msgs/Image", "compression": "jpeg",
+                                               "queue_length": 1}))
+        frames, began, until = 0, None, None
+        while until is None or time.monotonic() < until:
+            left = TIMEOUT_S if until is None else until - time.monotonic()
+            try:
+                message = await asyncio.wait_for(socket.read_message(), max(left, 0.001))
+            except asyncio.TimeoutError:
+                if until is None:
+                    raise ConnectionError("no frame of %s through %s within %.0f s" % (topic, ws_url.split("?")[0],
+                                                                                        TIMEOUT_S))
+                break
+            if message is None:
+                raise ConnectionError("the websocket at %s closed" % ws_url.split("?")[0])
+            if not isinstance(message, bytes):
+                continue
+            if began is None:  # the clock starts at the first frame
+                began = time.monotonic()
+                until = began + seconds
+            else:
+                frames += 1
+        socket.close()
+        return frames / (time.monotonic() - began)
+    return asyncio.run(count())

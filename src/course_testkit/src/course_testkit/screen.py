@@ -93,6 +93,17 @@ def colour_stats(pixels: Iterable[RGB]) -> ColourStats:
     return ColourStats(total, len(counts), counts.most_common(1)[0][1] / total, reddish)
 
 
+def colour_share(pixels: Iterable[RGB], colour: RGB, tolerance: int = 16) -> float:
+    """The fraction of `pixels` within `tolerance` of `colour` in each channel (a picture sent as
+    JPEG, as VNC's Tight encoding does, comes back a few units off)."""
+    total = near = 0
+    for pixel in pixels:
+        total += 1
+        if all(abs(a - b) <= tolerance for a, b in zip(pixel, colour)):
+            near += 1
+    return near / total if total else 0.0
+
+
 def grab_screen(display: str, path: str, timeout_s: float = 30.0) -> str:
     """Screenshot of the whole `display` to a PNG at `path` (in a child process: Qt binds one display).
 

@@ -1,58 +1,45 @@
 """The student's workbench (`make jupyter`) for tests and benchmarks, driven as JupyterLab's own
-page drives it: Jupyter's REST API and its terminal websocket.
+page drives it: Jupyter's REST API and its terminal websocket (course_testkit.jupyter).
 
 `Workbench` starts the real start-up (`rosrun course_workbench workbench`, what `make jupyter`
 runs) on a free port, with a fresh HOME (the student's home: their overlay ~/catkin_ws is made
 there) and a student master URI on a free port nobody else uses, and waits until JupyterLab
 answers. Stopping it stops JupyterLab (SIGTERM: it ends its terminals and the proxied lab page),
 then anything left that carries its run token (course_testkit.isolation), and removes the home.
-
-`Terminal` is one of JupyterLab's terminals (`POST /api/terminals`, then the websocket
-`/terminals/websocket/<name>`, JSON ["stdin", text] in and ["stdout", text] out): `run(command)`
-types a command line and returns its exit status and what it printed.
 """
 from __future__ import annotations
 
-import asyncio
-import json
 import os
-import re
 import secrets
 import shutil
 import signal
 import subprocess
 import tempfile
-import threading
 import time
-import urllib.error
-import urllib.request
-import uuid
-from typing import Any, Dict, Mapping, Optional, Sequence, Tuple
-
-from tornado.websocket import websocket_connect
+from typing import Any, List, Mapping, Optional, Sequence
 
 from course_testkit import isolation
+from course_testkit.jupyter import STOP_TIMEOUT_S, JupyterError, JupyterServer, Terminal
 from course_testkit.nodes import find_executable
 from course_testkit.waiting import wait_for
 
 START_TIMEOUT_S = 60.0
-STOP_TIMEOUT_S = 20.0
-REQUEST_TIMEOUT_S = 30.0
+# The reference solutions' folders: never on a path of the student's terminals or desktop.
+REFERENCE_MARKERS = ("/solutions/", "/solutions_ws/", "/solutions:", "/solutions_ws:")
+TAB_TIMEOUT_S = 30.0  # a launcher card's new tab, at its page
+SPLASH_ID = "jupyterlab-splash"  # JupyterLab's loading screen
+WorkbenchError = JupyterError
+__all__ = ["Workbench", "WorkbenchError", "Terminal", "open_from_launcher"]
 
 
-class WorkbenchError(RuntimeError):
-    """The workbench did not start, or a terminal command did not finish in time."""
-
-
-class Workbench:
+class Workbench(JupyterServer):
     """A running workbench; use as a context manager (see the module docstring)."""
 
     def __init__(self, env: Optional[Mapping[str, str]] = None, home: Optional[str] = None,
                  token: Optional[str] = None, command: Optional[Sequence[str]] = None) -> None:
         """`command` (default: the start-up itself) may be another way to it, e.g. `make jupyter`."""
         self.command = list(command) if command else None
-        self.port = isolation.free_port()
-        self.token = token or secrets.token_hex(16)
+        super().__init__(isolation.free_port(), token or secrets.token_hex(16))
         self._owns_home = home is None
         # A home others may pass (0755, as /home/<user>): a root grader's sandbox user must reach
         # the self-check's output folder under it.
@@ -70,10 +57,6 @@ class Workbench:
         self.log_path = os.path.join(self.home, "workbench.log")
         self.proc: Optional[subprocess.Popen] = None
         self.started_s: Optional[float] = None  # from the command to JupyterLab answering
-
-    @property
-    def url(self) -> str:
-        return "http://127.0.0.1:%d" % self.port
 
     def output(self) -> str:
         try:
@@ -112,147 +95,55 @@ class Workbench:
         if self._owns_home:
             shutil.rmtree(self.home, ignore_errors=True)
 
+    def processes(self, word: str) -> List[List[str]]:
+        """The command lines of the workbench's processes (those with its run token) naming `word`."""
+        return [c for c in map(_cmdline, isolation.pids_with_token(self.run_token)) if any(word in p for p in c)]
+
+    def lab_view_port(self) -> Optional[int]:
+        """The port of the lab page's lab_view (behind /roslab/), once roslab started it."""
+        for command in self.processes("lab_view"):
+            if "--port" in command:
+                return int(command[command.index("--port") + 1])
+        return None
+
     def __enter__(self) -> "Workbench":
         return self.start()
 
     def __exit__(self, *exc: Any) -> None:
         self.stop()
 
-    # --- REST ---------------------------------------------------------------------------------
 
-    def request(self, method: str, path: str, body: Any = None, token: Optional[str] = "",
-                follow: bool = True) -> Tuple[int, bytes, Dict[str, str]]:
-        """(status, body, headers) of a request to JupyterLab; `token` None sends none, "" ours."""
-        headers = {}
-        if token is not None:
-            headers["Authorization"] = "token %s" % (token or self.token)
-        data = None
-        if body is not None:
-            data = json.dumps(body).encode()
-            headers["Content-Type"] = "application/json"
-        request = urllib.request.Request(self.url + path, data=data, method=method, headers=headers)
-        opener = urllib.request.build_opener() if follow else urllib.request.build_opener(_NoRedirect)
-        try:
-            with opener.open(request, timeout=REQUEST_TIMEOUT_S) as reply:
-                return reply.status, reply.read(), dict(reply.headers)
-        except urllib.error.HTTPError as err:
-            return err.code, err.read(), dict(err.headers)
+def _cmdline(pid: int) -> List[str]:
+    try:
+        with open("/proc/%d/cmdline" % pid, "rb") as f:
+            return [part.decode(errors="replace") for part in f.read().split(b"\0") if part]
+    except OSError:
+        return []
 
-    def status(self, path: str, token: Optional[str] = "") -> Optional[int]:
-        try:
-            return self.request("GET", path, token=token, follow=False)[0]
-        except OSError:
+
+def open_from_launcher(browser: Any, bench: Workbench, title: str, path: str) -> None:
+    """In `browser` (selenium), open JupyterLab, click the launcher's card named `title` and go to
+    the tab it opens, which must show `<base>/<path>` logged in by Jupyter's cookie alone (no token
+    in its URL). AssertionError saying what the launcher shows when there is no such card."""
+    from selenium.webdriver.common.by import By
+    browser.get("%s/lab?token=%s" % (bench.url, bench.token))
+
+    def card() -> Any:
+        # JupyterLab's splash screen covers the launcher until the page has loaded: a click on a
+        # card behind it lands on the splash (ElementClickInterceptedException)
+        if browser.find_elements(By.ID, SPLASH_ID):
             return None
-
-    def api(self, method: str, path: str, body: Any = None) -> Any:
-        """The JSON answer of a REST call that must succeed."""
-        status, data, _ = self.request(method, path, body)
-        if status >= 300:
-            raise WorkbenchError("%s %s -> %d: %s" % (method, path, status, data[:500].decode(errors="replace")))
-        return json.loads(data) if data else None
-
-    def write_file(self, path: str, text: str) -> Any:
-        """PUT /api/contents/<path>: a text file, relative to JupyterLab's root (the home)."""
-        return self.api("PUT", "/api/contents/" + path.lstrip("/"), {"type": "file", "format": "text", "content": text})
-
-    def make_folder(self, path: str) -> Any:
-        """PUT /api/contents/<path> as a directory (the file browser's New Folder)."""
-        return self.api("PUT", "/api/contents/" + path.lstrip("/"), {"type": "directory"})
-
-    def terminal(self) -> "Terminal":
-        name = self.api("POST", "/api/terminals")["name"]
-        return Terminal(self, name)
-
-
-class _NoRedirect(urllib.request.HTTPRedirectHandler):
-    def redirect_request(self, *args: Any, **kwargs: Any) -> None:
+        for element in browser.find_elements(By.CSS_SELECTOR, ".jp-LauncherCard"):
+            if title in (element.get_attribute("title") or "") + element.text:
+                return element
         return None
-
-
-# Control sequences a terminal prints (colours, titles, bracketed paste), taken out of the output.
-_ANSI = re.compile(r"\x1b(\[[0-9;?]*[ -/]*[@-~]|\][^\x07\x1b]*(\x07|\x1b\\)?|[()][A-Za-z0-9])")
-
-
-class Terminal:
-    """One of JupyterLab's terminals, through its websocket (see the module docstring)."""
-
-    def __init__(self, workbench: Workbench, name: str) -> None:
-        self.workbench, self.name = workbench, name
-        # The websocket's loop runs all the time, in a thread of its own: Jupyter pings its
-        # terminals' websockets and closes one that leaves its pings unanswered.
-        self.loop = asyncio.new_event_loop()
-        self.thread = threading.Thread(target=self.loop.run_forever, name="terminal-%s" % name, daemon=True)
-        self.thread.start()
-        url = "ws://127.0.0.1:%d/terminals/websocket/%s?token=%s" % (workbench.port, name, workbench.token)
-        self.pending = ""
-        self.socket = self._call(self._connect(url), REQUEST_TIMEOUT_S)
-
-    def _call(self, coroutine: Any, timeout: float) -> Any:
-        """Run `coroutine` on the websocket's loop; its result."""
-        return asyncio.run_coroutine_threadsafe(coroutine, self.loop).result(timeout)
-
-    def run(self, command: str, timeout: float = 120.0) -> Tuple[int, str]:
-        """Type `command` and Enter; wait for it to finish. (exit status, what it printed)."""
-        mark = uuid.uuid4().hex[:12]
-        # The typed line holds the marker split in two ('@@''END'), so only the echo's output matches.
-        # `a & echo`: a command line that ends in & takes no `;`
-        joint = " " if command.rstrip().endswith("&") else "; "
-        self._call(self._send(["stdin", "%s%secho \"@@\"'END' $? %s\r" % (command, joint, mark)]), REQUEST_TIMEOUT_S)
-        pattern = re.compile(r"@@END (\d+) %s" % mark)
-        text = self._call(self._read_until(pattern, timeout), timeout + REQUEST_TIMEOUT_S)
-        found = pattern.search(text)
-        # what follows the typed line (echoed with the marker in it), up to the marker's output
-        typed = text.rfind(mark, 0, found.start())
-        start = text.find("\n", typed) + 1 if typed >= 0 else 0
-        return int(found.group(1)), text[start:found.start()]
-
-    @staticmethod
-    async def _connect(url: str):
-        return await websocket_connect(url, connect_timeout=REQUEST_TIMEOUT_S)
-
-    async def _send(self, message: list) -> None:
-        await self.socket.write_message(json.dumps(message))
-
-    async def _read_until(self, pattern: "re.Pattern[str]", timeout: float) -> str:
-        deadline = time.monotonic() + timeout
-        while not pattern.search(self.pending):
-            left = deadline - time.monotonic()
-            if left <= 0:
-                raise WorkbenchError("terminal %s: no end of the command within %.0f s; it printed:\n%s"
-                                     % (self.name, timeout, self.pending[-3000:]))
-            try:
-                message = await asyncio.wait_for(self.socket.read_message(), left)
-            except asyncio.TimeoutError:
-                continue
-            if message is None:
-                raise WorkbenchError("terminal %s closed; it printed:\n%s" % (self.name, self.pending[-3000:]))
-            kind, *rest = json.loads(message)
-            if kind == "stdout":
-                self.pending += _ANSI.sub("", rest[0]).replace("\r", "")
-        found = pattern.search(self.pending)
-        text, self.pending = self.pending[:found.end()], self.pending[found.end():]
-        return text
-
-    async def _closed(self) -> None:
-        self.socket.close()
-        try:
-            while await asyncio.wait_for(self.socket.read_message(), STOP_TIMEOUT_S) is not None:
-                pass
-        except asyncio.TimeoutError:
-            pass
-
-    def close(self) -> None:
-        """Close the websocket (its closing handshake done), then end the terminal's shell."""
-        try:
-            self._call(self._closed(), 2 * STOP_TIMEOUT_S)
-        finally:
-            self.loop.call_soon_threadsafe(self.loop.stop)
-            self.thread.join(STOP_TIMEOUT_S)
-            self.loop.close()
-        self.workbench.request("DELETE", "/api/terminals/%s" % self.name)
-
-    def __enter__(self) -> "Terminal":
-        return self
-
-    def __exit__(self, *exc: Any) -> None:
-        self.close()
+    found = wait_for(card, START_TIMEOUT_S, 0.2)
+    assert found, "no '%s' card in JupyterLab's launcher; the launcher shows: %s" % (
+        title, [e.text for e in browser.find_elements(By.CSS_SELECTOR, ".jp-LauncherCard")])
+    lab_tab = browser.current_window_handle
+    found.click()
+    assert wait_for(lambda: len(browser.window_handles) == 2, TAB_TIMEOUT_S, 0.1), "the card opened no tab"
+    browser.switch_to.window([h for h in browser.window_handles if h != lab_tab][0])
+    assert wait_for(lambda: browser.current_url.startswith("%s/%s" % (bench.url, path)), TAB_TIMEOUT_S, 0.1), \
+        browser.current_url
+    assert "token=" not in browser.current_url  # Jupyter's login cookie is what lets it in

@@ -68,3 +68,11 @@ def test_virtual_display_does_not_reset_when_its_last_client_leaves(tmp_path):
         paint_root_and_leave(display.display, 0xFF0000)
         stats = json.loads(grab_screen(display.display, str(tmp_path / "root.png")))
     assert stats["distinct"] == 1 and stats["reddish"] > 0, stats
+
+
+def test_colour_share_counts_pixels_near_the_colour():
+    from course_testkit.screen import colour_share
+    pixels = [(69, 86, 255)] * 80 + [(75, 80, 250)] * 10 + [(0, 0, 0)] * 10
+    assert colour_share(pixels, (69, 86, 255)) == 0.9
+    assert colour_share(pixels, (69, 86, 255), tolerance=0) == 0.8
+    assert colour_share([], (0, 0, 0)) == 0.0

@@ -1,4 +1,5 @@
-"""What the page's graph, topic and plot panels ask the server, as JSON-ready dicts.
+"""What the page's graph, topic and plot panels ask the server, as JSON-ready dicts, and what the
+page's header says in words about the ROS side (/api/health).
 
 The page refreshes its node graph and its topic lists by GETting /api/graph and /api/topics, and
 turns an rqt_plot path (`/turtle1/pose/x:y`) into the fields to read with /api/plot, so the
@@ -16,6 +17,7 @@ from course_introspection.plot_fields import PlotPathError, expand_shorthand, fi
 Json = Dict[str, Any]
 MAX_PLOT_SPEC = 2000
 MAX_PLOT_FIELDS = 32
+DEFAULT_IMAGE_TOPIC = "/turtlesim/image"  # the canvas panel's topic (www/index.html's default)
 
 
 class ApiError(ValueError):
@@ -27,13 +29,17 @@ class ApiError(ValueError):
 
 
 class Master(Protocol):
-    """The two questions asked of the ROS master (rosgraph.Master answers both)."""
+    """The questions asked of the ROS master (rosgraph.Master answers them), and whether a node
+    answers (its own XML-RPC server)."""
 
     def system_state(self) -> Sequence[Sequence]:
         """getSystemState(): [publishers, subscribers, services], each [name, [nodes]] rows."""
 
     def topic_types(self) -> Mapping[str, str]:
         """getTopicTypes() as topic -> type."""
+
+    def node_answers(self, name: str) -> bool:
+        """Whether the node `name` answers (it may be registered yet dead)."""
 
 
 def graph(master: Master, show_debug: bool = False) -> Json:
@@ -80,3 +86,26 @@ def plot_fields(master: Master, spec: Optional[str]) -> Json:
     if len(fields) > MAX_PLOT_FIELDS:
         raise ApiError("%s names %d numbers; plot at most %d at once" % (spec.strip(), len(fields), MAX_PLOT_FIELDS))
     return {"fields": fields}
+
+
+def health(master: Master, image_topic: Optional[str]) -> Json:
+    """In words, what keeps the page from showing the lab: the master does not answer (the student
+    stopped `roscore`), or nothing publishes the canvas's image topic (turtlesim is not running).
+    `state` is "ok", "no-master" or "no-publisher"; `says` is the sentence the page shows."""
+    topic = "/" + (image_topic or DEFAULT_IMAGE_TOPIC).strip().lstrip("/")
+    try:
+        publishers = {row[0]: row[1] for row in master.system_state()[0]}
+    except ApiError as err:
+        if err.status != 503:
+            raise
+        return {"state": "no-master", "topic": topic,
+                "says": "%s%s. Start it again (roscore): the page follows it when it is back."
+                        % (str(err)[:1].upper(), str(err)[1:].rstrip("."))}
+    registered = sorted(publishers.get(topic) or [])
+    alive = [node for node in registered if master.node_answers(node)]
+    if not alive:
+        silent = " (%s is still registered, but does not answer)" % ", ".join(registered) if registered else ""
+        return {"state": "no-publisher", "topic": topic,
+                "says": "No node publishes %s%s: turtlesim is not running. Start it (rosrun turtlesim "
+                        "turtlesim_node): the canvas comes back with it." % (topic, silent)}
+    return {"state": "ok", "topic": topic, "says": "", "publishers": alive}

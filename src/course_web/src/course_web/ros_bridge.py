@@ -10,7 +10,9 @@ would otherwise connect nothing and say nothing.
 """
 from __future__ import annotations
 
+import http.client
 import threading
+import xmlrpc.client
 from typing import Any, Dict, Hashable, Optional, Set, Tuple, Type
 
 import genpy
@@ -25,6 +27,7 @@ from course_web.protocol import Bridge, Deliver, RequestError, ServiceDone, publ
 
 IMAGE_TYPE = "sensor_msgs/Image"
 CALLER_ID = "/course_web"
+NODE_TIMEOUT_S = 1.0  # a node's XML-RPC answer to getPid (/api/health asks the canvas's publishers)
 SUBSCRIBER_QUEUE = 10
 
 
@@ -226,6 +229,19 @@ class RosBridge(Bridge):
         """Nothing to wait for: a call still running is on a daemon thread."""
 
 
+class TimedTransport(xmlrpc.client.Transport):
+    """XML-RPC over HTTP with a time limit: a stuck master or node must not stall the caller."""
+
+    def __init__(self, timeout: float) -> None:
+        super().__init__()
+        self.timeout = timeout
+
+    def make_connection(self, host):
+        connection = super().make_connection(host)
+        connection.timeout = self.timeout
+        return connection
+
+
 class RosMaster:
     """course_web.introspect's Master, asked over XML-RPC (a proxy per call: they are not thread-safe)."""
 
@@ -240,3 +256,14 @@ class RosMaster:
 
     def topic_types(self) -> Dict[str, str]:
         return dict(self._ask("getTopicTypes"))
+
+    def node_answers(self, name: str) -> bool:
+        """Whether the node answers at the address its master has for it: a node killed by a signal
+        rospy does not catch (SIGKILL; SIGHUP, a closed terminal's) stays registered, silent."""
+        try:
+            uri = rosgraph.Master(CALLER_ID).lookupNode(name)
+            code, _message, _pid = xmlrpc.client.ServerProxy(uri, transport=TimedTransport(NODE_TIMEOUT_S)).getPid(
+                CALLER_ID)
+        except (rosgraph.MasterException, OSError, xmlrpc.client.Error, http.client.HTTPException, ValueError):
+            return False
+        return code == 1

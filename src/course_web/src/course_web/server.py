@@ -84,7 +84,7 @@ class StaticFiles(TokenGuard, tornado.web.StaticFileHandler):
 
 
 class Api(TokenGuard, tornado.web.RequestHandler):
-    """GET /api/graph, /api/topics, /api/plot?path=...: JSON for the page's panels.
+    """GET /api/graph, /api/topics, /api/plot?path=..., /api/health?topic=...: JSON for the page's panels.
 
     The master is asked on the request pool (XML-RPC blocks); a failure is a JSON {"error": ...}
     with a 4xx/5xx status, never an exception out of the handler."""
@@ -93,6 +93,7 @@ class Api(TokenGuard, tornado.web.RequestHandler):
         "graph": lambda master, params: introspect.graph(master, params["debug"] == "true"),
         "topics": lambda master, params: introspect.topics(master),
         "plot": lambda master, params: introspect.plot_fields(master, params["path"]),
+        "health": lambda master, params: introspect.health(master, params["topic"]),
     }
 
     def initialize(self, settings_: Settings) -> None:
@@ -106,7 +107,7 @@ class Api(TokenGuard, tornado.web.RequestHandler):
         master = self.settings_.master
         try:
             try:  # read here, on the loop's thread; tornado refuses arguments that are not UTF-8
-                params = {name: self.get_query_argument(name, "") for name in ("debug", "path")}
+                params = {name: self.get_query_argument(name, "") for name in ("debug", "path", "topic")}
             except tornado.web.HTTPError as err:
                 raise introspect.ApiError("the request's arguments are not valid UTF-8 text (%s)"
                                           % (err.log_message or err.reason or err.status_code))
@@ -192,7 +193,7 @@ def application(settings: Settings) -> tornado.web.Application:
     """The tornado application serving the page and the websocket."""
     return tornado.web.Application(
         [(r"/(?:websocket)?", BridgeSocket, {"settings_": settings}),
-         (r"/api/(graph|topics|plot)", Api, {"settings_": settings}),
+         (r"/api/(graph|topics|plot|health)", Api, {"settings_": settings}),
          (r"/(.+)", StaticFiles, {"settings_": settings})],
         # Frames up to 2x the limit are read and answered with a status error; beyond that
         # tornado closes the socket (1009, "message too big") without reading them.

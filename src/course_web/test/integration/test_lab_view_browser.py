@@ -72,7 +72,7 @@ def canvas_stats(driver):
 def test_the_page_loads_with_its_panels(browser, lab, open_page):
     open_page(browser, lab)
     panels = [element.get_attribute("data-panel") for element in browser.find_elements(By.CSS_SELECTOR, "[data-panel]")]
-    assert {"canvas", "teleop", "console", "graph", "tf", "plot", "camera", "view3d"} <= set(panels)
+    assert {"canvas", "teleop", "console", "graph", "tf", "plot", "camera", "view3d", "health"} <= set(panels)
     assert browser.title == "The lab in a browser"
 
 

@@ -25,6 +25,9 @@ class FakeMaster:
     def topic_types(self):
         return dict(TYPES)
 
+    def node_answers(self, name):
+        return True
+
 
 class DeadMaster:
     def system_state(self):
@@ -67,6 +70,11 @@ def test_answers_from_the_master():
     assert (status, topics) == (200, {"topics": [{"name": "/turtle1/pose", "type": "turtlesim/Pose"}]})
     assert graph_status == 200 and graph["nodes"] == ["/turtlesim"]
     assert plot_status == 200 and plot["fields"][0]["label"] == "/turtle1/pose/x"
+    # the header's words: 200 with the state, the master down included
+    [(status, health)] = ask(FakeMaster(), ["/api/health?topic=/turtle1/pose"])
+    assert status == 200 and health["state"] == "ok" and health["publishers"] == ["/turtlesim"]
+    [(status, health)] = ask(DeadMaster(), ["/api/health"])
+    assert status == 200 and health["state"] == "no-master" and "does not answer" in health["says"]
 
 
 def test_failures_are_json_errors_and_the_server_keeps_answering():

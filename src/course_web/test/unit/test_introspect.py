@@ -18,11 +18,16 @@ TYPES = {"/turtle1/pose": "turtlesim/Pose", "/turtle1/cmd_vel": "geometry_msgs/T
 
 
 class FakeMaster:
+    dead = ()  # nodes registered that do not answer
+
     def system_state(self):
         return STATE
 
     def topic_types(self):
         return dict(TYPES)
+
+    def node_answers(self, name):
+        return name not in self.dead
 
 
 def test_graph_is_rqt_graphs_default_view():
@@ -89,3 +94,40 @@ def test_any_plot_text_gives_fields_or_an_api_error(spec):
         assert str(err)
     else:
         assert 0 < len(answer["fields"]) <= introspect.MAX_PLOT_FIELDS
+
+
+class DownMaster:
+    def system_state(self):
+        raise introspect.ApiError("the ROS master at http://localhost:11311 does not answer: [Errno 111] refused", 503)
+
+
+class NoTurtlesim(FakeMaster):
+    def system_state(self):
+        return [[row for row in STATE[0] if row[0] != "/turtlesim/image"], STATE[1], STATE[2]]
+
+
+def test_health_says_in_words_that_the_master_or_turtlesim_is_gone():
+    with_image = [STATE[0] + [["/turtlesim/image", ["/turtlesim"]]], STATE[1], STATE[2]]
+    master = FakeMaster()
+    master.system_state = lambda: with_image
+    assert introspect.health(master, "/turtlesim/image") == {
+        "state": "ok", "topic": "/turtlesim/image", "says": "", "publishers": ["/turtlesim"]}
+    assert introspect.health(master, "")["state"] == "ok"  # the canvas's default topic
+    gone = introspect.health(NoTurtlesim(), "turtlesim/image")
+    assert gone["state"] == "no-publisher" and gone["topic"] == "/turtlesim/image"
+    assert "turtlesim is not running" in gone["says"] and "rosrun turtlesim turtlesim_node" in gone["says"]
+    master.dead = ("/turtlesim",)  # killed by a signal rospy does not catch: registered, silent
+    silent = introspect.health(master, "/turtlesim/image")
+    assert silent["state"] == "no-publisher" and "/turtlesim is still registered, but does not answer" in silent["says"]
+    down = introspect.health(DownMaster(), "/turtlesim/image")
+    assert down["state"] == "no-master"
+    assert down["says"].startswith("The ROS master at http://localhost:11311 does not answer")
+    assert "roscore" in down["says"]
+
+
+def test_health_passes_on_other_failures():
+    class Refusing:
+        def system_state(self):
+            raise introspect.ApiError("not this", 400)
+    with pytest.raises(introspect.ApiError):
+        introspect.health(Refusing(), "/turtlesim/image")

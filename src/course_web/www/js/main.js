@@ -8,10 +8,11 @@ import * as cameraPanel from './camera_panel.js';
 import * as plotPanel from './plot_panel.js';
 import * as tfPanel from './tf_panel.js';
 import * as graphPanel from './graph_panel.js';
+import * as healthPanel from './health_panel.js';
 
 const PANELS = {
   canvas: canvasPanel, teleop: teleopPanel, console: consolePanel, view3d: view3dPanel, camera: cameraPanel,
-  plot: plotPanel, tf: tfPanel, graph: graphPanel,
+  plot: plotPanel, tf: tfPanel, graph: graphPanel, health: healthPanel,
 };
 
 const bridge = new Bridge(bridgeUrl(window.location));

@@ -35,7 +35,7 @@ from typing import Dict, List, Optional, Sequence
 import roslib.packages
 
 from course_net.ports import free_port
-
+from course_web.ros_bridge import TimedTransport
 from course_workbench.startup import DEFAULT_MASTER_URI, TOKEN_VAR
 
 CALLER_ID = "/workbench_roslab"
@@ -48,19 +48,11 @@ IMAGE_RATE = 30
 PR_SET_PDEATHSIG = 1
 
 
-class _Transport(xmlrpc.client.Transport):
-    """XML-RPC over HTTP with a time limit: a stuck master must not stall the supervisor."""
-
-    def make_connection(self, host):
-        connection = super().make_connection(host)
-        connection.timeout = MASTER_TIMEOUT_S
-        return connection
-
-
 def master_pid(uri: str) -> Optional[int]:
     """The process id of the master at `uri`, or None when nothing answers as a master there."""
     try:
-        code, _message, pid = xmlrpc.client.ServerProxy(uri, transport=_Transport()).getPid(CALLER_ID)
+        master = xmlrpc.client.ServerProxy(uri, transport=TimedTransport(MASTER_TIMEOUT_S))
+        code, _message, pid = master.getPid(CALLER_ID)
     except (OSError, xmlrpc.client.Error, http.client.HTTPException):
         return None
     return int(pid) if code == 1 else None

@@ -15,6 +15,7 @@ another workspace (the reference solutions' overlay) is on any of their paths.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import errno
 import json
 import os
@@ -42,6 +43,12 @@ WORKSPACE_MARKERS = (".catkin", ".catkin_workspace")
 SETUP_VAR = "COURSE_WORKBENCH_SETUP"
 OVERLAY_VAR = "COURSE_WORKBENCH_OVERLAY"
 TOKEN_VAR = "COURSE_WORKBENCH_TOKEN"  # the lab page's copy of Jupyter's token (roslab only)
+# The desktop (jupyter-remote-desktop-proxy at <base>/desktop/): the X session its vncserver runs
+# (the package reads this variable), and the file where that session writes its display, which
+# the terminals read (config/terminal.bashrc).
+XSTARTUP_VAR = "JUPYTER_REMOTE_DESKTOP_PROXY_XSTARTUP"
+DISPLAY_FILE_VAR = "COURSE_WORKBENCH_DISPLAY_FILE"
+STATE_FOLDER = os.path.join(".local", "share", "course-workbench")  # under the home: settings, display
 
 
 class StartError(Exception):
@@ -212,6 +219,14 @@ def write_settings(settings: Dict, folder: str) -> str:
     return path
 
 
+def desktop_env(course: Course, state: str, port: int) -> Dict[str, str]:
+    """What JupyterLab's environment gives the desktop: our X session (desktop.xstartup) for
+    jupyter-remote-desktop-proxy's vncserver, and where that session writes its display, one file
+    per port (two workbenches of one user keep their desktops apart)."""
+    return {XSTARTUP_VAR: course.config_file("desktop.xstartup"),
+            DISPLAY_FILE_VAR: os.path.join(state, "display-%d" % port)}
+
+
 def main(argv: Optional[Sequence[str]] = None, env: Optional[Mapping[str, str]] = None) -> int:
     env = dict(os.environ if env is None else env)
     args = parse(sys.argv[1:] if argv is None else argv, env)
@@ -237,9 +252,12 @@ def main(argv: Optional[Sequence[str]] = None, env: Optional[Mapping[str, str]] 
     token = env.get("JUPYTER_TOKEN") or secrets.token_hex(TOKEN_BYTES)
     home = env.get("HOME") or os.path.expanduser("~")
     root_dir = os.path.abspath(args.root_dir or home)
-    config = write_settings(jupyter_settings(course, args, port, token, root_dir),
-                            os.path.join(home, ".local", "share", "course-workbench"))
+    state = os.path.join(home, STATE_FOLDER)
+    config = write_settings(jupyter_settings(course, args, port, token, root_dir), state)
     base.update({SETUP_VAR: course.setup, OVERLAY_VAR: args.overlay, "SHELL": "/bin/bash"})
+    base.update(desktop_env(course, state, port))
+    with contextlib.suppress(FileNotFoundError):  # a display left by a desktop that was killed
+        os.remove(base[DISPLAY_FILE_VAR])
     base.setdefault("ROS_MASTER_URI", DEFAULT_MASTER_URI)
     if "ROS_IP" not in base:
         base.setdefault("ROS_HOSTNAME", "localhost")

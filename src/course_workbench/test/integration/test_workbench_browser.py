@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from course_testkit.browser import chromium, require_browser
 from course_testkit.waiting import wait_for
-from course_testkit.workbench import Workbench
+from course_testkit.workbench import Workbench, open_from_launcher
 
 require_browser()
 
@@ -27,31 +27,24 @@ return {state: c.dataset.state, closings: window.closings, frames: Number(v.data
 """
 
 
+# The header's words about the ROS side (course_web's health_panel.js): its state and its sentence.
+HEALTH = """
+const h = document.getElementById('ros-health');
+return h ? [h.dataset.state, h.textContent] : [null, ''];
+"""
+STUDENT_ROS = ("roscore -p %s > ~/roscore.log 2>&1 & until rostopic list > /dev/null 2>&1; do sleep 0.1; done; "
+               "rosrun turtlesim turtlesim_node _background_r:=255 _background_g:=0 _background_b:=0 "
+               "> ~/turtlesim.log 2>&1 &")  # (a node given _params needs its master up: rospy sets them first)
+
+
 def is_red(pixel) -> bool:
     """Red, give or take the JPEG frames' rounding."""
     return bool(pixel) and pixel[0] > 200 and pixel[1] < 60 and pixel[2] < 60
 
 
 def test_the_launcher_opens_the_lab_page_which_follows_the_students_master():
-    from selenium.webdriver.common.by import By
-
     with Workbench() as bench, chromium() as browser:
-        browser.get("%s/lab?token=%s" % (bench.url, bench.token))
-
-        def card():
-            for element in browser.find_elements(By.CSS_SELECTOR, ".jp-LauncherCard"):
-                if LAUNCHER_TITLE in (element.get_attribute("title") or "") + element.text:
-                    return element
-            return None
-        found = wait_for(card, 60, 0.2)
-        assert found, "no '%s' card in JupyterLab's launcher; the launcher shows: %s" % (
-            LAUNCHER_TITLE, [e.text for e in browser.find_elements(By.CSS_SELECTOR, ".jp-LauncherCard")])
-        lab_tab = browser.current_window_handle
-        found.click()
-        assert wait_for(lambda: len(browser.window_handles) == 2, 30, 0.1), "the card opened no tab"
-        browser.switch_to.window([h for h in browser.window_handles if h != lab_tab][0])
-        assert wait_for(lambda: browser.current_url.startswith(bench.url + "/roslab/"), 30, 0.1), browser.current_url
-        assert "token=" not in browser.current_url  # Jupyter's login cookie is what lets it in
+        open_from_launcher(browser, bench, LAUNCHER_TITLE, "roslab/")
 
         def state():
             return browser.execute_script(PAGE_STATE) or {"state": None, "closings": 0, "frames": 0, "pixel": None}
@@ -63,11 +56,7 @@ def test_the_launcher_opens_the_lab_page_which_follows_the_students_master():
         # the student's own master and turtlesim, red: the open page moves to them by itself
         port = bench.master_uri.rsplit(":", 1)[1]
         with bench.terminal() as term:
-            # (a node given _params needs its master up: rospy sets them first)
-            code, said = term.run("roscore -p %s > ~/roscore.log 2>&1 & "
-                                  "until rostopic list > /dev/null 2>&1; do sleep 0.1; done; "
-                                  "rosrun turtlesim turtlesim_node _background_r:=255 _background_g:=0 _background_b:=0 "
-                                  "> ~/turtlesim.log 2>&1 &" % port)
+            code, said = term.run(STUDENT_ROS % port)
             assert code == 0, said
             red = wait_for(lambda: is_red(state()["pixel"]) and state()["state"] == "open", 90, 0.25)
             now = state()
@@ -75,4 +64,25 @@ def test_the_launcher_opens_the_lab_page_which_follows_the_students_master():
                 now, term.run("rosnode list 2>&1; tail -n5 ~/roscore.log ~/turtlesim.log")[1])
             assert now["closings"] >= 1  # lab_view started again on the student's master ...
             assert wait_for(lambda: state()["frames"] >= now["frames"] + 10, 30, 0.2)  # ... and frames flow
+            assert wait_for(lambda: browser.execute_script(HEALTH)[0] == "ok", 30, 0.2), browser.execute_script(HEALTH)
+
+            # the student's turtlesim killed (SIGKILL: it stays registered, silent), then their master
+            # stopped: the header says so, in words
+            term.run("kill -KILL %2; wait %2")
+            assert wait_for(lambda: browser.execute_script(HEALTH)[0] == "no-publisher", 30, 0.2), \
+                browser.execute_script(HEALTH)
+            assert "turtlesim is not running" in browser.execute_script(HEALTH)[1]
+            term.run("kill -INT %1; wait")
+            assert wait_for(lambda: browser.execute_script(HEALTH)[0] == "no-master", 30, 0.2), \
+                browser.execute_script(HEALTH)
+            assert "does not answer" in browser.execute_script(HEALTH)[1]
+            # ... and when they start them again, the words go and the page draws again
+            code, said = term.run(STUDENT_ROS % port)
+            assert code == 0, said
+            back = state()
+            assert wait_for(lambda: browser.execute_script(HEALTH)[0] == "ok", 90, 0.25), (
+                browser.execute_script(HEALTH), term.run("rosnode list 2>&1; tail -n5 ~/roscore.log")[1])
+            assert browser.execute_script(HEALTH)[1] == ""
+            assert wait_for(lambda: state()["frames"] >= back["frames"] + 10 and is_red(state()["pixel"]), 30, 0.2), \
+                state()
             term.run("kill %2; kill -INT %1; wait")

@@ -5,17 +5,14 @@ until the student starts a master, then on the student's.
 Each test has a workbench of its own (a fresh home, a student master URI on a free port)."""
 from __future__ import annotations
 
-import asyncio
 import re
 import urllib.error
 import urllib.request
-from typing import List, Optional, Tuple
+from typing import Tuple
 
 import pytest
-import tornado.httpclient
-import tornado.websocket
 
-from course_testkit.isolation import pids_with_token
+from course_testkit.jupyter import refused_websocket
 from course_testkit.rosbridge import drive_turtle
 from course_testkit.waiting import wait_for
 from course_testkit.workbench import Workbench
@@ -29,43 +26,9 @@ def bench():
         yield workbench
 
 
-def cmdline(pid: int) -> List[str]:
-    try:
-        with open("/proc/%d/cmdline" % pid, "rb") as f:
-            return [part.decode(errors="replace") for part in f.read().split(b"\0") if part]
-    except OSError:
-        return []
-
-
-def processes(bench: Workbench, word: str) -> List[List[str]]:
-    """The command lines of the workbench's processes that name `word`."""
-    return [c for c in map(cmdline, pids_with_token(bench.run_token)) if any(word in part for part in c)]
-
-
-def lab_view_port(bench: Workbench) -> Optional[int]:
-    for command in processes(bench, "lab_view"):
-        if "--port" in command:
-            return int(command[command.index("--port") + 1])
-    return None
-
-
 def open_page(bench: Workbench) -> Tuple[int, str]:
     status, data, _ = bench.request("GET", "/roslab/")
     return status, data.decode(errors="replace")
-
-
-def refused_websocket(url: str) -> Optional[int]:
-    """The HTTP status that refused the websocket handshake (None if it was accepted)."""
-    async def connect() -> Optional[int]:
-        try:
-            socket = await tornado.websocket.websocket_connect(url, connect_timeout=20)
-        except tornado.websocket.WebSocketError:
-            return -1
-        except tornado.httpclient.HTTPClientError as err:
-            return err.code
-        socket.close()
-        return None
-    return asyncio.run(connect())
 
 
 def test_the_lab_page_is_behind_jupyters_login_and_drives_its_own_turtle(bench):
@@ -82,13 +45,13 @@ def test_the_lab_page_is_behind_jupyters_login_and_drives_its_own_turtle(bench):
     assert refused_websocket(ws) == 403
     assert refused_websocket(ws + "?token=not-the-token") == 403
     # lab_view's own port (loopback) wants the token too: no way around Jupyter's login
-    port = lab_view_port(bench)
+    port = bench.lab_view_port()
     assert port is not None
     with pytest.raises(urllib.error.HTTPError) as refused:
         urllib.request.urlopen("http://127.0.0.1:%d/" % port, timeout=10)
     assert refused.value.code == 403
     # no master of the student's yet: the page's own master and turtlesim, and the turtle moves
-    assert processes(bench, "turtlesim_node")
+    assert bench.processes("turtlesim_node")
     before, after = drive_turtle(ws + "?token=" + bench.token)
     assert after - before > 1.0, (before, after)
 
@@ -96,7 +59,7 @@ def test_the_lab_page_is_behind_jupyters_login_and_drives_its_own_turtle(bench):
 def test_the_lab_page_follows_the_students_master_once_they_start_one_and_when_it_restarts(bench):
     status, _ = open_page(bench)  # the page first, on its own master
     assert status == 200
-    own_masters = processes(bench, "rosmaster")
+    own_masters = bench.processes("rosmaster")
     assert own_masters, "no master of the page's own"
     student_port = bench.master_uri.rsplit(":", 1)[1]
     with bench.terminal() as term:
@@ -107,8 +70,8 @@ def test_the_lab_page_follows_the_students_master_once_they_start_one_and_when_i
         followed = wait_for(lambda: "/workbench_lab_view" in term.run("rosnode list 2>&1")[1], 60, 0.5)
         assert followed, term.run("rosnode list 2>&1; cat ~/roscore.log")[1]
         # ... and the page's own master and turtlesim are gone
-        assert wait_for(lambda: [c for c in processes(bench, "rosmaster") if student_port not in c] == [], 20), \
-            processes(bench, "rosmaster")
+        assert wait_for(lambda: [c for c in bench.processes("rosmaster") if student_port not in c] == [], 20), \
+            bench.processes("rosmaster")
         assert wait_for(lambda: open_page(bench)[0] == 200, 30)
         before, after = drive_turtle("ws://127.0.0.1:%d/roslab/websocket?token=%s" % (bench.port, bench.token))
         assert after - before > 1.0, (before, after)

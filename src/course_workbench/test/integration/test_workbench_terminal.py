@@ -15,48 +15,9 @@ import tempfile
 import pytest
 
 from course_testkit.nodes import find_executable
-from course_testkit.workbench import Workbench
+from course_testkit import student_lab
+from course_testkit.workbench import REFERENCE_MARKERS, Workbench
 
-TALKER = '''#!/usr/bin/env python3
-"""Publishes a counted greeting on %(topic)s, ten times a second."""
-import rospy
-from std_msgs.msg import String
-
-
-def main():
-    rospy.init_node("talker")
-    publisher = rospy.Publisher("%(topic)s", String, queue_size=10)
-    rate = rospy.Rate(10)
-    count = 0
-    while not rospy.is_shutdown():
-        publisher.publish(String(data="hello number %%d" %% count))
-        count += 1
-        try:
-            rate.sleep()
-        except rospy.ROSInterruptException:
-            break
-
-
-if __name__ == "__main__":
-    main()
-'''
-LISTENER = '''#!/usr/bin/env python3
-"""Prints what it hears on /chatter_talk."""
-import rospy
-from std_msgs.msg import String
-
-
-def heard(message):
-    print("I heard: %s" % message.data, flush=True)
-
-
-if __name__ == "__main__":
-    rospy.init_node("listener")
-    rospy.Subscriber("/chatter_talk", String, heard)
-    rospy.spin()
-'''
-# The reference solutions' folders: never on a path of the student's terminal.
-REFERENCE_MARKERS = ("/solutions/", "/solutions_ws/", "/solutions:", "/solutions_ws:")
 
 
 @pytest.fixture(scope="module")
@@ -69,13 +30,7 @@ def bench():
 def built_chatter(bench):
     """The student's chatter package, made as 002 section 2 says, through the workbench."""
     with bench.terminal() as term:
-        code, said = term.run("cd ~/catkin_ws/src && catkin_create_pkg chatter rospy std_msgs")
-        assert code == 0, said
-        bench.make_folder("catkin_ws/src/chatter/scripts")
-        bench.write_file("catkin_ws/src/chatter/scripts/talker.py", TALKER % {"topic": "/chatter_talk"})
-        bench.write_file("catkin_ws/src/chatter/scripts/listener.py", LISTENER)
-        code, said = term.run("chmod +x chatter/scripts/*.py && cd ~/catkin_ws && catkin_make", timeout=300)
-        assert code == 0, said[-3000:]
+        student_lab.make_chatter(bench, term)
     return os.path.join(bench.home, "catkin_ws", "src", "chatter")
 
 
@@ -122,9 +77,9 @@ def test_catkin_make_in_the_terminal_makes_the_package_found_in_a_new_terminal(b
 
 def test_the_self_check_passes_the_students_package(bench, built_chatter):
     with bench.terminal() as term:
-        code, said = term.run("course-check", timeout=240)
+        code, said = term.run("course-check", timeout=student_lab.CHECK_TIMEOUT_S)
     assert code == 0, said
-    assert "PASS  chatter" in said
+    assert student_lab.PASSED in said
     assert "isolation: " in said
     report = os.path.join(bench.home, "course-check", "report.html")
     assert os.path.isfile(report) and report in said
@@ -136,13 +91,11 @@ def test_the_self_check_fails_a_buggy_package_with_its_reason_as_the_ta_would(be
     """A talker on the wrong topic, in another folder of the student's: the self-check says why it
     fails, and the TA's `grade` of the same files gives the same verdict."""
     with bench.terminal() as term:
-        code, said = term.run("mkdir -p ~/buggy && cp -r ~/catkin_ws/src/chatter ~/buggy/")
-        assert code == 0, said
-        bench.write_file("buggy/chatter/scripts/talker.py", TALKER % {"topic": "/chatter"})
-        code, said = term.run("course-check ~/buggy --out ~/buggy-check", timeout=240)
+        buggy = student_lab.make_buggy_copy(bench, term)
+        code, said = term.run("course-check ~/%s --out ~/buggy-check" % buggy, timeout=student_lab.CHECK_TIMEOUT_S)
     assert code == 1, said
-    assert "FAIL  chatter" in said
-    assert "no executable in package chatter publishes /chatter_talk" in said
+    assert student_lab.FAILED in said
+    assert student_lab.BUGGY_REASON in said
     with open(os.path.join(bench.home, "buggy-check", "buggy", "results.json")) as f:
         mine = [(t["name"], t["status"], t["output"].split("\n\n")[0]) for t in json.load(f)["tests"]]
     with tempfile.TemporaryDirectory() as grades:

@@ -5,6 +5,9 @@ from __future__ import annotations
 
 import argparse
 import os
+import shutil
+import socket
+import subprocess
 
 from course_workbench import startup
 
@@ -87,3 +90,49 @@ def test_the_settings_file_is_the_users_alone(tmp_path):
     path = startup.write_settings(settings(), str(tmp_path / "conf"))
     assert os.stat(path).st_mode & 0o777 == 0o600
     assert os.stat(str(tmp_path / "conf")).st_mode & 0o777 == 0o700
+
+
+def test_the_desktop_gets_the_courses_x_session_and_a_display_file_per_port():
+    env = startup.desktop_env(FakeCourse(), "/home/student/.local/share/course-workbench", 8888)
+    assert env[startup.XSTARTUP_VAR] == "/course/src/course_workbench/config/desktop.xstartup"
+    assert env[startup.DISPLAY_FILE_VAR] == "/home/student/.local/share/course-workbench/display-8888"
+
+
+def test_the_desktops_files_are_there_and_well_formed():
+    course = startup.Course()
+    xstartup = course.config_file("desktop.xstartup")
+    assert os.access(xstartup, os.X_OK)  # vncserver runs it as a program
+    for script in (xstartup, course.config_file("terminal.bashrc"), course.config_file("workspace.bash")):
+        assert subprocess.run(["bash", "-n", script]).returncode == 0, script
+    if shutil.which("jwm"):
+        assert subprocess.run(["jwm", "-p", "-f", course.config_file("desktop.jwmrc")]).returncode == 0
+
+
+def test_a_terminal_has_the_desktops_display_exactly_while_the_desktop_runs(tmp_path):
+    """terminal.bashrc's DEBUG trap, before each command: DISPLAY from the file the desktop's X
+    session writes, while that display's socket exists; unset when the desktop is gone; a DISPLAY
+    of the student's own is left alone."""
+    display_file, empty = tmp_path / "display-8888", tmp_path / "setup.bash"
+    empty.write_text("")
+    with socket.socket(socket.AF_UNIX) as server:  # an X server's socket, on a number nobody uses
+        number = next(n for n in range(7000, 8000) if not os.path.exists("/tmp/.X11-unix/X%d" % n))
+        x_socket = "/tmp/.X11-unix/X%d" % number
+        os.makedirs("/tmp/.X11-unix", exist_ok=True)
+        server.bind(x_socket)
+        try:
+            script = """
+source %(rc)s
+echo "1[${DISPLAY:-none}]"
+echo :%(n)d > %(file)s
+echo "2[${DISPLAY:-none}]"
+rm %(file)s
+echo "3[${DISPLAY:-none}]"
+export DISPLAY=:0
+echo "4[${DISPLAY:-none}]"
+""" % {"rc": startup.Course().config_file("terminal.bashrc"), "n": number, "file": display_file}
+            env = {"HOME": str(tmp_path), "PATH": os.environ["PATH"], startup.DISPLAY_FILE_VAR: str(display_file),
+                   startup.SETUP_VAR: str(empty), startup.OVERLAY_VAR: str(tmp_path / "none")}
+            said = subprocess.run(["bash", "-c", script], env=env, stdout=subprocess.PIPE, text=True).stdout
+        finally:
+            os.unlink(x_socket)
+    assert said.split() == ["1[none]", "2[:%d]" % number, "3[none]", "4[:0]"], said

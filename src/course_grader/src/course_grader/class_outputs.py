@@ -35,7 +35,7 @@ def write(out: str, verdicts: Sequence[Verdict], order: Sequence[Milestone], iso
     pairs: List[similarity.Pair] = []
     if len(students) > 1:
         try:
-            pairs = similarity.similar_pairs({s: unpacked(out, s) for s in students}, boilerplate)
+            pairs = similarity.find({s: unpacked(out, s) for s in students}, boilerplate)
         except ImportError as err:  # the venv without copydetect (tools/deps.sh installs it)
             say("similarity: not computed (%s)" % err)
     similarity.write_csv(os.path.join(out, similarity.CSV_NAME), pairs)

@@ -18,8 +18,11 @@ import csv
 import html
 import io
 import itertools
+import json
 import os
+import shutil
 import subprocess
+import sys
 import tempfile
 from typing import Dict, Iterable, List, NamedTuple, Optional, Sequence, Set, Tuple
 
@@ -185,6 +188,27 @@ def similar_pairs(students: Dict[str, str], boilerplate: Sequence[str] = (), thr
     return sorted(pairs, key=lambda p: (-p.score, p.package, p.student_a, p.student_b))
 
 
+def find(students: Dict[str, str], boilerplate: Sequence[str] = (), threshold: float = THRESHOLD) -> List[Pair]:
+    """similar_pairs, in this Python when it has copydetect, else in the first python3 on PATH: the
+    course venv's, where tools/deps.sh installs copydetect (course_env puts it first; the grader
+    itself runs as catkin's relay, with Debian's /usr/bin/python3). ImportError when neither has it."""
+    try:
+        import copydetect  # noqa: F401
+        return similar_pairs(students, boilerplate, threshold)
+    except ImportError:
+        pass
+    python = shutil.which("python3")
+    if not python or os.path.abspath(python) == os.path.abspath(sys.executable):  # a venv's is a link: not realpath
+        raise ImportError("copydetect is not installed (tools/deps.sh installs it into the course venv)")
+    asked = json.dumps({"students": students, "boilerplate": list(boilerplate), "threshold": threshold})
+    done = subprocess.run([python, "-m", "course_grader.similarity"], input=asked, stdout=subprocess.PIPE,
+                          stderr=subprocess.PIPE, text=True, check=False)
+    if done.returncode != 0:
+        raise ImportError("%s -m course_grader.similarity failed: %s" % (python, done.stderr.strip()[-500:]))
+    return [Pair(a, b, package, score, tuple(Shared(*s) for s in shared))
+            for a, b, package, score, shared in json.loads(done.stdout)]
+
+
 def write_csv(path: str, pairs: Sequence[Pair]) -> None:
     with open(path, "w", newline="") as f:
         w = csv.writer(f)
@@ -215,3 +239,8 @@ def html_section(pairs: Sequence[Pair]) -> List[str]:
                        % (html.escape(s.language), html.escape(s.left), html.escape(s.right)))
         out.append("</details>")
     return out
+
+
+if __name__ == "__main__":  # find() in the course venv's python: a JSON question on stdin, the pairs on stdout
+    question = json.load(sys.stdin)
+    json.dump(similar_pairs(question["students"], question["boilerplate"], question["threshold"]), sys.stdout)

@@ -46,6 +46,7 @@ CPP_SUFFIXES = (".cpp", ".cc", ".cxx", ".h", ".hpp", ".hh")
 CREATE_PKG_DEPENDS = ("rospy", "roscpp", "std_msgs", "geometry_msgs", "turtlesim", "message_generation",
                       "message_runtime", "tf2_ros")
 SHOWN_SLICES = 6  # shared passages shown per pair and language
+SHOWN_OPEN = 5  # the pairs whose shared passages the report shows opened (the others: a click away)
 
 
 def language_of(path: str) -> Optional[str]:
@@ -232,8 +233,8 @@ def html_section(pairs: Sequence[Pair]) -> List[str]:
                                                       html.escape(p.student_b), html.escape(p.package)))
     out.append("</table>")
     for i, p in enumerate(pairs):
-        out.append("<details id='pair-%d'><summary>%s and %s, %s: %.2f</summary>" % (
-            i, html.escape(p.student_a), html.escape(p.student_b), html.escape(p.package), p.score))
+        out.append("<details id='pair-%d'%s><summary>%s and %s, %s: %.2f</summary>" % (
+            i, " open" if i < SHOWN_OPEN else "", html.escape(p.student_a), html.escape(p.student_b), html.escape(p.package), p.score))
         for s in p.shared:
             out.append("<p>%s</p><div class='side'><pre>%s</pre><pre>%s</pre></div>"
                        % (html.escape(s.language), html.escape(s.left), html.escape(s.right)))

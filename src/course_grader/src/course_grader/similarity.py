@@ -20,6 +20,7 @@ import io
 import itertools
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -39,6 +40,11 @@ THRESHOLD = 0.6
 NOISE = 25
 GUARANTEE = 30
 MAX_FILE_BYTES = 256 * 1024  # larger files are data, not code a student wrote
+# What of a package is compared, per language: a submission of many big files (its unpacked size is
+# bounded by submissions.MAX_UNPACKED_BYTES only) costs the class no more than this.
+MAX_DOCUMENT_BYTES = 1024 * 1024
+# A package name catkin_create_pkg is given (REP 144): a student's package.xml may say anything.
+_PACKAGE_NAME = re.compile(r"^[a-z][a-z0-9_]{0,63}$")
 # pygments' lexer for each kind of file, and the comment a file's name is joined under.
 LANGUAGES = {"python": "#", "cpp": "//", "xml": None, "cmake": "#"}
 CPP_SUFFIXES = (".cpp", ".cc", ".cxx", ".h", ".hpp", ".hh")
@@ -79,6 +85,8 @@ def package_documents(package_dir: str) -> Dict[str, str]:
             language = language_of(path) if os.path.isfile(path) and not os.path.islink(path) else None
             if language is None or os.path.getsize(path) > MAX_FILE_BYTES:
                 continue
+            if sum(len(t) for t in parts.get(language, [])) >= MAX_DOCUMENT_BYTES:
+                continue
             with open(path, encoding="utf-8", errors="replace") as f:
                 text = f.read()
             comment = LANGUAGES[language]
@@ -113,8 +121,9 @@ def boilerplate_hashes(folders: Iterable[str]) -> Dict[str, Set[int]]:
 
 def created_package(names: Iterable[str], dest: str) -> str:
     """`dest` holding what catkin_create_pkg makes for each package name (the boilerplate every
-    student's package starts from); nothing when catkin_create_pkg is missing."""
-    for name in sorted(set(names)):
+    student's package starts from), for the names that are valid package names; nothing when
+    catkin_create_pkg is missing."""
+    for name in sorted(n for n in set(names) if _PACKAGE_NAME.match(n)):
         try:
             subprocess.run(["catkin_create_pkg", name] + list(CREATE_PKG_DEPENDS), cwd=dest, check=False,
                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, timeout=60)

@@ -77,9 +77,10 @@ bench: build
 	@$(REFENV) cd $(ROOT) && python3 bench/turtlesim_bench.py && python3 bench/relay_bench.py \
 	  && python3 bench/sim_bench.py && python3 bench/web_bench.py --simulator && python3 bench/workbench_bench.py
 
-# The grader's trust and speed: the reference graded 20 times, then a class of 30 (about 45 min).
+# The grader's trust and speed: the reference graded 20 times, then a class of 30 (about 45 min),
+# then the similarity check on a class of 30.
 bench-grade: build
-	@$(REFENV) cd $(ROOT) && python3 bench/grade_bench.py
+	@$(REFENV) cd $(ROOT) && python3 bench/grade_bench.py && python3 bench/similarity_bench.py
 
 # docker/Dockerfile built without a Docker engine, in a debootstrap chroot, then its CMD (the demo)
 # run as the image's user. Needs root; downloads ~1 GB; 10-20 min. DOCKER_CHECK_ARGS="--keep" etc.

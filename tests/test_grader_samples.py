@@ -2,7 +2,9 @@
 verdict against the sample's expected.json:
   {"<milestone>": {"passed": true}} or {"<milestone>": {"passed": false, "reason": "<regex>"}}
 The regex must match the milestone's output in the sample's Gradescope results.json (the
-failing check in words plus the student's log tails). Only the listed milestones are graded.
+failing check in words plus the student's log tails); a failure's "cause" (a course_milestones.causes
+key), when given, must be the one its results.json carries, and the class's failure_groups.csv must
+group the sample under it. Only the listed milestones are graded.
 A sample with a `derive.json` is a variant of another folder of this checkout (a reference
 solution, another sample), so that neither code nor answers are written twice: it is made in a
 temporary folder before grading, from {"copy": [[source, target], ...]} (folders of the checkout,
@@ -13,6 +15,9 @@ student code; where it would run with the grader's rights (isolation `none`: not
 namespaces, e.g. `make test` as a user in a container), the sample is not graded and its test is
 skipped, saying so.
 Afterwards no process of any run may be left (bad samples fork, setsid, ignore SIGINT).
+The same grading gives the class's similarity.csv (the sim_chatter_* samples: carol is alice's
+copy with its names changed and lines reordered, bob wrote his own) and a folder to regrade one
+student in (grade --regrade).
 
 The grading starts as soon as the session knows these tests will run (start_early, called by
 the root conftest.py), so its ~270 s, mostly spent waiting on the students' nodes, overlap the
@@ -20,6 +25,7 @@ rest of the suite; the first test here waits for it.
 """
 from __future__ import annotations
 
+import csv
 import json
 import re
 import shutil
@@ -136,6 +142,67 @@ def test_verdict(graded: Path, sample: str, milestone: str, expected: Dict) -> N
         assert re.search(expected["reason"], test["output"], re.S), \
             "%s/%s: the reason does not match %r:\n%s" % (sample, milestone, expected["reason"],
                                                           test["output"][:MESSAGE_CHARS])
+    if "cause" in expected:
+        assert test["extra_data"]["cause"] == expected["cause"], "%s/%s: cause %r, expected %r:\n%s" % (
+            sample, milestone, test["extra_data"]["cause"], expected["cause"], test["output"][:MESSAGE_CHARS])
+
+
+def _csv(path: Path) -> List[Dict[str, str]]:
+    with path.open(newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def test_the_class_failures_group_by_cause(graded: Path) -> None:
+    """Every sample with an expected cause is in that group; groups come largest first."""
+    groups = _csv(graded / "failure_groups.csv")
+    students = {(g["milestone"], g["cause"]): g["students"].split() for g in groups}
+    for sample, milestone, expected in expectations():
+        if "cause" in expected and ROOT / "tests" / "submissions" / sample in SAMPLES:
+            assert sample in students.get((milestone, expected["cause"]), []), \
+                "%s is not in the group %s/%s: %s" % (sample, milestone, expected["cause"], groups)
+    counts = [int(g["count"]) for g in groups]
+    assert counts == sorted(counts, reverse=True) and all(int(g["count"]) == len(g["students"].split()) for g in groups)
+    milestones = {m["milestone"]: m for m in _csv(graded / "milestones.csv")}
+    assert int(milestones["chatter"]["passed"]) >= 3 and float(milestones["chatter"]["median_seconds"]) > 0
+    page = (graded / "report.html").read_text()
+    assert page.index("The class at a glance") < page.index("Failures by cause") < page.index("id='verdicts'")
+
+
+def test_the_copied_pair_is_flagged_and_the_independent_pair_is_not(graded: Path) -> None:
+    pairs = {(p["student_a"], p["student_b"], p["package"]): float(p["score"])
+             for p in _csv(graded / "similarity.csv")}
+    assert ("sim_chatter_alice", "sim_chatter_carol", "chatter") in pairs, pairs
+    assert not [p for p in pairs if "sim_chatter_bob" in p], pairs
+    page = (graded / "report.html").read_text()
+    assert "sim_chatter_alice and sim_chatter_carol, chatter" in page and "class='side'" in page
+
+
+def test_regrade_changes_one_student_only(graded: Path) -> None:
+    """A copy of the class's grading where one student's verdict was changed by hand: regrading
+    that student from their submission gives their verdict back and leaves everyone else's files
+    as they were."""
+    student = "bad_no_package"
+    out = graded.parent / "regrade"  # where the sandbox user may pass, as for the grading itself
+    for results in graded.glob("*/results.json"):
+        (out / results.parent.name).mkdir(parents=True)
+        shutil.copyfile(results, out / results.parent.name / "results.json")
+    shutil.copyfile(graded / "gradebook.csv", out / "gradebook.csv")
+    mine = out / student / "results.json"
+    tampered = json.loads(mine.read_text())
+    tampered["tests"][0].update(status="passed", score=tampered["tests"][0]["max_score"])
+    mine.write_text(json.dumps(tampered))
+    others = {p: p.read_bytes() for p in out.glob("*/results.json") if p != mine}
+    rows_before = _csv(out / "gradebook.csv")
+    done = subprocess.run(["rosrun", "course_grader", "grade", "--regrade", student, "--only-from", "expected.json",
+                           "--out", str(out), str(ROOT / "tests" / "submissions" / student)],
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=300, check=False)
+    assert done.returncode == 0, done.stdout
+    assert json.loads(mine.read_text())["tests"][0]["status"] == "failed"
+    assert {p: p.read_bytes() for p in out.glob("*/results.json") if p != mine} == others
+    assert _csv(out / "gradebook.csv") == rows_before  # the row given back; every other row as it was
+    groups = {(g["milestone"], g["cause"]): g["students"].split() for g in _csv(out / "failure_groups.csv")}
+    assert student in groups[("chatter", "package_missing")]
+    assert "graded 1 submission(s)" in done.stdout
 
 
 def test_outputs_for_the_class(graded: Path) -> None:

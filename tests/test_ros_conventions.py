@@ -27,6 +27,7 @@ CATKIN_LINT = os.path.join(ROOT, ".venv", "bin", "catkin_lint")
 ROSDEP_KEYS = {
     "numpy": "python3-numpy",
     "mujoco": "python3-mujoco",  # PyPI only: tools/rosdep.yaml maps the key to pip
+    "copydetect": "python3-copydetect",  # PyPI only: tools/rosdep.yaml maps the key to pip
     "PyQt5": "python3-pyqt5",
     "yaml": "python3-yaml",
     "matplotlib": "python3-matplotlib",

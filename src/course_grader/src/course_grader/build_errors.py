@@ -16,6 +16,8 @@ import os
 import re
 from typing import Dict, Iterable, List, NamedTuple, Optional, Sequence, Set
 
+from course_milestones import causes
+
 SUMMARY_LINES = 25
 MAX_UNDEFINED = 6
 # Where a failed build says why: CMake errors, catkin's and Python's complaints, make's summary.
@@ -92,7 +94,8 @@ def summarise(log: str, ws: str, lines: int = SUMMARY_LINES) -> str:
     rest = [] if first else _error_blocks(all_lines)
     if not first and not rest:
         rest = [line for line in all_lines if line.strip()][-lines:]
-    return "\n".join((first + rest)[:lines] + hints)
+    return causes.finding(causes.of(hints[0], causes.BUILD_FAILED) if hints else causes.BUILD_FAILED,
+                          "\n".join((first + rest)[:lines] + hints))
 
 
 def relative_paths(text: str, ws: str) -> str:
@@ -217,8 +220,8 @@ def _error_blocks(lines: Sequence[str]) -> List[str]:
 
 
 def _hints(lines: Sequence[str], compiled: Sequence[str], undefined: Sequence["Undefined"],
-           targets: Dict[str, Target], own_messages: Iterable[str]) -> List[str]:
-    hints: List[str] = []
+           targets: Dict[str, Target], own_messages: Iterable[str]) -> List[causes.Finding]:
+    hints: List[causes.Finding] = []
     own = set(own_messages)
     noetic_hinted: Set[int] = set()  # one hint per kind (_1 and _2 undeclared: one hint)
     for line in compiled:
@@ -231,27 +234,30 @@ def _hints(lines: Sequence[str], compiled: Sequence[str], undefined: Sequence["U
             noetic = pattern.search(m.group("what"))
             if noetic and kind not in noetic_hinted:
                 noetic_hinted.add(kind)
-                hints.append(hint % noetic.groupdict())
+                hints.append(causes.finding("noetic_cxx", hint % noetic.groupdict()))
     ros = [u for u in undefined if u.symbol.startswith(_ROS_NAMESPACES)]
     if ros:
         target = ros[0].target or Target("", "<target>")
         cmake = "%s/CMakeLists.txt" % target.package if target.package else "CMakeLists.txt"
-        hints.append("hint: %s is not linked with the ROS libraries: in %s, name roscpp (and every ROS package "
+        hints.append(causes.finding(
+            "not_linked", "hint: %s is not linked with the ROS libraries: in %s, name roscpp (and every ROS package "
                      "the code uses, e.g. tf2_ros) in find_package(catkin REQUIRED COMPONENTS ...), and add "
                      "target_link_libraries(%s ${catkin_LIBRARIES}) after add_executable(%s ...)"
-                     % (target.name, cmake, target.name, target.name))
+                     % (target.name, cmake, target.name, target.name)))
     elif undefined:
         target = undefined[0].target or Target("", "<target>")
-        hints.append("hint: a function used by %s is declared but never compiled into it: add the .cpp file "
+        hints.append(causes.finding(
+            "not_compiled_in", "hint: a function used by %s is declared but never compiled into it: add the .cpp file "
                      "that defines it to add_executable(%s ...), or the library to target_link_libraries"
-                     % (target.name, target.name))
+                     % (target.name, target.name)))
     for line in lines:
         m = _NO_PACKAGE.search(line)
         if m:
-            hints.append("hint: %s is neither a package of this machine nor of the course workspace: check its "
-                         "spelling in find_package(...) and in package.xml" % m.group("package"))
+            hints.append(causes.finding(
+                "unknown_package", "hint: %s is neither a package of this machine nor of the course workspace: check "
+                         "its spelling in find_package(...) and in package.xml" % m.group("package")))
             break
-    return list(dict.fromkeys(hints))
+    return [h for i, h in enumerate(hints) if h not in hints[:i]]  # each once, its cause kept
 
 
 def _compiled_by(source: str, targets: Dict[str, Target]) -> Target:
@@ -263,15 +269,18 @@ def _compiled_by(source: str, targets: Dict[str, Target]) -> Target:
     return Target(source.split("/", 1)[0] if "/" in source else "", "<target>")
 
 
-def _missing_header_hint(header: str, package: str, target: Target, own_messages: Set[str]) -> str:
+def _missing_header_hint(header: str, package: str, target: Target, own_messages: Set[str]) -> causes.Finding:
     if header in _PLUGINLIB_H:
-        return ("hint: Debian 12's pluginlib has no %s (ROS Noetic's had it; only the course's environment, "
+        return causes.finding(
+            "noetic_cxx", "hint: Debian 12's pluginlib has no %s (ROS Noetic's had it; only the course's environment, "
                 "`source <course>/catkin_ws/devel/setup.bash`, adds it back): #include <%s>"
                 % (header, _PLUGINLIB_H[header]))
     if package in own_messages:
-        return ("hint: %s is generated from %s's messages, and %s was compiled before it: add "
+        return causes.finding(
+            "no_add_dependencies", "hint: %s is generated from %s's messages, and %s was compiled before it: add "
                 "add_dependencies(%s ${${PROJECT_NAME}_EXPORTED_TARGETS} ${catkin_EXPORTED_TARGETS}) after "
                 "add_executable(%s ...)" % (header, package, target.name, target.name, target.name))
-    return ("hint: no package found provides %s: check the spelling, name %s in find_package(catkin REQUIRED "
-            "COMPONENTS ...) and as <depend>%s</depend> in package.xml, and keep "
+    return causes.finding(
+        "unknown_package", "hint: no package found provides %s: check the spelling, name %s in find_package(catkin "
+            "REQUIRED COMPONENTS ...) and as <depend>%s</depend> in package.xml, and keep "
             "include_directories(${catkin_INCLUDE_DIRS})" % (header, package, package))

@@ -1,4 +1,5 @@
 """rosrun course_grader grade [SUBMISSION...] [--class DIR] [--jobs N] [--only M ...] [--out DIR]
+                             [--boilerplate DIR ...] [--regrade STUDENT]
 
 Grades each SUBMISSION (a folder, .zip or .tar.gz of catkin packages), or every entry of a class
 folder (--class DIR), against the course milestones; with neither, grades the course's own
@@ -9,6 +10,11 @@ Writes under --out (default ./grades):
   <student>/<milestone>/junit.xml, *.log, *.png   verdict, student logs, canvas snapshots
   <student>/results.json                          Gradescope results
   gradebook.csv, report.html                      the class
+  milestones.csv, failure_groups.csv, scores.png  the class at a glance (per milestone, failures by cause)
+  similarity.csv                                  pairs of submissions too alike (never part of a verdict)
+--regrade STUDENT grades that one student again into an existing --out (their submission among
+those given, else the copy the last grading unpacked) and writes the class files again; every
+other student's verdicts stay as their results.json holds them.
 Prints a line per finished submission. Exit code: with the reference, 1 if a milestone fails;
 with students, 0 once every submission has its verdicts; 130 when stopped by Ctrl+C (SIGINT) or
 SIGTERM: within seconds, the runs under way ended, the verdicts so far written and the rest
@@ -22,6 +28,7 @@ import os
 import shutil
 import signal
 import sys
+import tempfile
 import time
 from typing import List, Optional, Set, Tuple
 
@@ -29,7 +36,7 @@ from course_milestones.registry import MILESTONES
 from course_sandbox import leftovers, levels
 from course_sandbox.policy import Limits, MiB
 
-from course_grader import gradebook, report, submissions, workspace
+from course_grader import class_outputs, class_view, submissions, workspace
 from course_grader.verdict import INTERRUPTED
 from course_grader.runner import REFERENCE, Busy, Grader, Options, claim_output, release_output
 
@@ -94,6 +101,10 @@ def parse(argv: Optional[List[str]]) -> argparse.Namespace:
                         help="disk one student's build and runs may fill in total, MiB (default %(default)s)")
     parser.add_argument("--results-json", metavar="PATH",
                         help="also write the (one) submission's Gradescope results.json to PATH")
+    parser.add_argument("--boilerplate", action="append", default=[], metavar="DIR",
+                        help="code every student was given (a template): left out of the similarity check")
+    parser.add_argument("--regrade", metavar="STUDENT",
+                        help="grade only STUDENT again, into the earlier grading in --out (see above)")
     parser.add_argument("--list", action="store_true", help="list the milestones and exit")
     parser.add_argument("-v", "--verbose", action="store_true", help="a line per milestone run too")
     return parser.parse_args(argv)
@@ -136,6 +147,34 @@ def in_course_environment() -> None:
     os.execve(sys.executable, [sys.executable] + sys.argv, env)
 
 
+def regrade_submission(student: str, given: List[submissions.Submission], out: str
+                       ) -> Tuple[List[submissions.Submission], Optional[str]]:
+    """The submission to regrade `student` from: theirs among those `given`, else a copy of what the
+    last grading in `out` unpacked (returned second: to remove afterwards). ValueError when `out`
+    holds no earlier grading or there is nothing to regrade from."""
+    if not class_outputs.earlier_students(out):
+        raise ValueError("%s holds no earlier grading (no gradebook.csv and no <student>/results.json)" % out)
+    mine = [s for s in given if s.name == student]
+    if mine:
+        return mine[:1], None
+    if given:
+        raise ValueError("no submission of %s among those given (%s)" % (student, ", ".join(s.name for s in given)))
+    earlier = class_outputs.unpacked(out, student)
+    if not os.path.isdir(earlier):
+        raise ValueError("give %s's submission (a path or --class DIR): %s has none unpacked" % (student, out))
+    copy = tempfile.mkdtemp(prefix="regrade-")
+    shutil.copytree(earlier, os.path.join(copy, student), symlinks=True)
+    return [submissions.Submission(student, os.path.join(copy, student))], copy
+
+
+def similarity_lines(pairs: List) -> List[str]:
+    """The terminal's word on similar pairs."""
+    if not pairs:
+        return []
+    return ["similar: %d pair(s), e.g. %s and %s (%s, %.2f); see similarity.csv"
+            % (len(pairs), pairs[0].student_a, pairs[0].student_b, pairs[0].package, pairs[0].score)]
+
+
 def main(argv: Optional[List[str]] = None) -> int:
     opts = parse(argv)
     if opts.list:
@@ -152,6 +191,13 @@ def main(argv: Optional[List[str]] = None) -> int:
     subs = submissions.named(opts.submissions)
     if opts.class_dir:
         subs += submissions.class_submissions(opts.class_dir)
+    regrade_copy = None
+    if opts.regrade:
+        try:
+            subs, regrade_copy = regrade_submission(opts.regrade, subs, os.path.abspath(opts.out))
+        except ValueError as err:
+            print("cannot regrade: %s" % err, file=sys.stderr)
+            return 2
     reference = not subs
     if opts.results_json and len(subs) != 1:
         print("--results-json needs exactly one submission", file=sys.stderr)
@@ -190,8 +236,13 @@ def main(argv: Optional[List[str]] = None) -> int:
         verdicts = grader.grade(subs, reference)
     finally:
         release_output(out)
-    gradebook.write(os.path.join(out, "gradebook.csv"), verdicts, MILESTONES)
-    report.write(os.path.join(out, "report.html"), verdicts, MILESTONES, grader.sandbox.describe())
+        if regrade_copy:
+            shutil.rmtree(regrade_copy, ignore_errors=True)
+    class_verdicts = class_outputs.merged(out, opts.regrade, verdicts, MILESTONES) if opts.regrade else verdicts
+    boilerplate = opts.boilerplate + [f for f in [workspace.reference_solutions(workspace.course_setup())] if f]
+    pairs = class_outputs.write(out, class_verdicts, MILESTONES, grader.sandbox.describe(), boilerplate)
+    for line in class_view.summary(class_verdicts, MILESTONES) + similarity_lines(pairs):
+        print(line)
     if opts.results_json:
         shutil.copyfile(os.path.join(out, subs[0].name, "results.json"), opts.results_json)
     failed = [v for v in verdicts if not v.passed]

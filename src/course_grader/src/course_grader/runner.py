@@ -31,7 +31,7 @@ from concurrent.futures import ThreadPoolExecutor
 from typing import Callable, Dict, List, NamedTuple, Optional, Sequence
 
 from course_milestones.milestone import Milestone
-from course_milestones import unbuilt
+from course_milestones import causes, unbuilt
 from course_milestones.scripts import script_problems
 from course_testkit import junit
 from course_testkit.artifacts import ENV_VAR as ARTIFACTS_VAR
@@ -41,6 +41,7 @@ from course_sandbox import leftovers, procs
 from course_sandbox.policy import ENV_VAR as POLICY_VAR, Limits
 
 from course_grader import gradescope, submissions, verdict, workspace
+from course_grader.class_outputs import WORK_DIR
 from course_grader.sandboxing import SandboxPlan
 from course_grader.submissions import Submission
 from course_grader.student_files import copy_logs
@@ -49,8 +50,6 @@ from course_grader.verdict import Verdict
 
 MILESTONE_PACKAGE = "course_milestones"
 REFERENCE = "reference"
-# Under --out, beside the students' folders; no student name starts with "_" (submissions.student_name).
-WORK_DIR = "_work"
 PID_FILE = "grading.pid"  # in WORK_DIR: the pid of the grading that writes this output folder
 KEPT_IN_WORK = ("durations.json", PID_FILE)
 # While interrupted: how often the processes below the grader are looked for and killed again.
@@ -106,6 +105,18 @@ def _load_json(path: str) -> Dict:
             return dict(json.load(f))
     except (OSError, ValueError, TypeError):
         return {}
+
+
+def _run_cause(checks_passed: bool, timed_out: bool, first: Sequence[str], recorded: Sequence[str],
+               hints: Sequence[str]) -> str:
+    """A failed run's cause, in the order its reason tells them: the checks passed but a sandbox
+    limit ended the run; what the build did not make; what the check recorded; a script rosrun
+    cannot start; the run's time limit; else not known."""
+    if checks_passed:
+        return "sandbox_limit"
+    known = [causes.of(h) for h in first] + list(recorded) + [causes.of(h) for h in hints]
+    known = [k for k in known if k]
+    return known[0] if known else "timeout" if timed_out else causes.CHECK_FAILED
 
 
 class Options(NamedTuple):
@@ -255,7 +266,7 @@ class Grader:
             except (submissions.UnsafeArchive, OSError, ValueError, EOFError, zipfile.BadZipFile,
                     tarfile.TarError) as err:
                 selected = verdict.select(self.milestones, [], self._only_for(None), False)
-                self._fail_all(sub, selected, "the submission cannot be unpacked: %s" % err)
+                self._fail_all(sub, selected, "the submission cannot be unpacked: %s" % err, "not_unpacked")
                 return
             packages = submissions.find_packages(files)
             names = [p.name for p in packages if p.name]
@@ -266,7 +277,7 @@ class Grader:
             for m in selected:
                 missing = verdict.missing_package(m, packages)
                 if missing:
-                    self._record(Verdict(sub.name, m, False, missing))
+                    self._record(Verdict(sub.name, m, False, missing, cause="package_missing"))
                 else:
                     runnable.append(m)
             if not runnable:
@@ -288,13 +299,15 @@ class Grader:
                 return
             if not built.ok:
                 for m in runnable:
-                    self._record(Verdict(sub.name, m, False, verdict.build_failed(built.summary)))
+                    self._record(Verdict(sub.name, m, False, verdict.build_failed(built.summary),
+                                         cause=causes.of(built.summary, causes.BUILD_FAILED)))
                 return
             shadowed = workspace.shadowed_modules(ws, self._protected, workspace.course_site(setup))
             if shadowed:
                 for m in runnable:
                     self._record(Verdict(sub.name, m, False, "the submission installs Python modules the course "
-                                         "provides, which would replace them: %s (rename them)" % ", ".join(shadowed)))
+                                         "provides, which would replace them: %s (rename them)" % ", ".join(shadowed),
+                                         cause="shadows_course"))
                 return
             # Read from the grader's own copy of each built package (ws/src is the student's to change).
             unmade = {p.name: unbuilt.problems(p.path, p.name, os.path.join(ws, "devel")) for p in own if p.name}
@@ -303,8 +316,11 @@ class Grader:
                 first = [h for name in m.packages for h in unmade.get(name, [])]
                 self._submit(self._run, sub, m, built.env, hints, ws, built.student_env, first)
         except Exception:  # noqa: BLE001 - the grader's own failure is this submission's verdict
-            self._fail_all(sub, selected or self.milestones[:1], verdict.INTERRUPTED if self._stop.is_set() else
-                           "the grader failed on this submission:\n%s" % traceback.format_exc(limit=5))
+            if self._stop.is_set():
+                self._fail_all(sub, selected or self.milestones[:1], verdict.INTERRUPTED)
+            else:
+                self._fail_all(sub, selected or self.milestones[:1], "the grader failed on this submission:\n%s"
+                               % traceback.format_exc(limit=5), "grader_error")
 
     def _run(self, sub: Submission, m: Milestone, env: Dict[str, str], hints: List[str], ws: Optional[str],
              student_env: Optional[Dict[str, str]], first: Sequence[str] = ()) -> None:
@@ -348,11 +364,16 @@ class Grader:
             verdict.trim_files(run_dir, skip=home)  # the student's home is theirs: never written by us
             # Its logs are copied: what the run wrote no longer counts in the student's disk bound.
             shutil.rmtree(home, ignore_errors=True)
+            cause = "" if passed else _run_cause(result.passed, result.timed_out, first, causes.recorded(artifacts),
+                                                 hints)
             self._record(Verdict(sub.name, m, passed, reason, verdict.log_tails(artifacts),
-                                 result.elapsed, artifacts, verdict.sandbox_notes(hits)))
+                                 result.elapsed, artifacts, verdict.sandbox_notes(hits), cause))
         except Exception:  # noqa: BLE001
-            self._record(Verdict(sub.name, m, False, verdict.INTERRUPTED if self._stop.is_set() else
-                                 "the grader failed on this milestone:\n%s" % traceback.format_exc(limit=5)))
+            if self._stop.is_set():
+                self._record(Verdict(sub.name, m, False, verdict.INTERRUPTED))
+            else:
+                self._record(Verdict(sub.name, m, False, "the grader failed on this milestone:\n%s"
+                                     % traceback.format_exc(limit=5), cause="grader_error"))
 
     # -- results ----------------------------------------------------------------------------
     def _expect(self, sub: Submission, count: int) -> None:
@@ -361,14 +382,14 @@ class Grader:
         if count == 0:
             self._finish(sub)
 
-    def _fail_all(self, sub: Submission, selected: Sequence[Milestone], reason: str) -> None:
+    def _fail_all(self, sub: Submission, selected: Sequence[Milestone], reason: str, cause: str = "") -> None:
         with self._lock:
             progress = self._progress[sub.name]
             progress.expected = len(progress.verdicts) + len([m for m in selected if m.name not in
                                                               {v.milestone.name for v in progress.verdicts}])
         for m in selected:
             if m.name not in {v.milestone.name for v in progress.verdicts}:
-                self._record(Verdict(sub.name, m, False, reason))
+                self._record(Verdict(sub.name, m, False, reason, cause=cause))
 
     def _record(self, v: Verdict) -> None:
         folder = self._student_dir(v.student, v.milestone.name)

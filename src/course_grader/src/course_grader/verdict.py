@@ -17,6 +17,7 @@ import re
 import stat
 from typing import Dict, Iterable, List, NamedTuple, Optional, Sequence
 
+from course_milestones import causes
 from course_milestones.milestone import Milestone
 from course_testkit.isolation import MAX_FILE_BYTES
 
@@ -31,6 +32,8 @@ LOG_TAIL_BYTES = 16 * 1024
 # How alike a found package name must be to the text's to count as a misspelling of it.
 CLOSE_NAME_RATIO = 0.75
 MAX_LOGS = 6
+# What a failed milestone's output starts with, before its reason.
+FAILED = "FAILED: "
 
 
 class Verdict(NamedTuple):
@@ -42,14 +45,22 @@ class Verdict(NamedTuple):
     elapsed: float = 0.0
     artifacts_dir: str = ""
     notes: str = ""  # what the sandbox saw (a limit the student's code hit), shown pass or fail
+    cause: str = ""  # why it failed, as a course_milestones.causes key ("": not known, see cause_key)
 
     @property
     def points(self) -> float:
         return self.milestone.points if self.passed else 0.0
 
+    @property
+    def cause_key(self) -> str:
+        """The failure's cause for the class view ("" when passed; CHECK_FAILED when not known)."""
+        if self.passed:
+            return ""
+        return self.cause if self.cause in causes.BY_KEY else causes.of(self.reason, causes.CHECK_FAILED)
+
     def output(self) -> str:
         """What the student reads for this milestone: the verdict, then the logs' last lines."""
-        head = "passed" if self.passed else "FAILED: %s" % self.reason
+        head = "passed" if self.passed else FAILED + self.reason
         return head + ("\n" + self.notes if self.notes else "") + ("\n\n" + self.logs if self.logs else "")
 
     def canvases(self) -> List[str]:
@@ -100,7 +111,7 @@ def missing_package(milestone: Milestone, found: Sequence[Package]) -> Optional[
 
 
 # The verdict of a milestone the grading did not reach, or whose run it ended, when the TA stopped it.
-INTERRUPTED = "not graded (interrupted)"
+INTERRUPTED = causes.finding("interrupted", "not graded (interrupted)")
 
 
 def build_failed(summary: str) -> str:

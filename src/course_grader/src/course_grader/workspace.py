@@ -17,6 +17,7 @@ import shlex
 import shutil
 from typing import Dict, Iterable, List, NamedTuple, Optional, Sequence, Set
 
+from course_milestones import causes
 from course_sandbox import env_paths
 from course_sandbox.run import LimitHits, capture_oneshot, run_oneshot
 from course_testkit.isolation import sourced_env
@@ -155,7 +156,8 @@ def build(ws: str, setup_bash: str, plan: SandboxPlan, home: str, log_path: str,
         return BuildResult(False, log_path, build_errors.summarise(text, ws), None)
     unordered = build_order.unordered(ws)
     if unordered:
-        return BuildResult(False, log_path, "\n".join(u.reason() for u in unordered), None)
+        return BuildResult(False, log_path, causes.finding("no_add_dependencies",
+                                                           "\n".join(u.reason() for u in unordered)), None)
     source = "source %s >/dev/null 2>&1; exec env -0" % shlex.quote(os.path.join(ws, "devel", "setup.bash"))
     code, out = capture_oneshot(policy, ["bash", "-c", source], ws, env)
     student_env = parse_env(out) if code == 0 else None

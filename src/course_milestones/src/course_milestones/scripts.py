@@ -10,6 +10,8 @@ from __future__ import annotations
 import os
 from typing import List
 
+from course_milestones import causes
+
 # Build products and tool folders: never a student's script.
 SKIPPED_DIRS = {"build", "devel", "install", "logs", ".git", "__pycache__", ".catkin_tools", "__MACOSX"}
 # Larger files are data, not scripts.
@@ -39,10 +41,12 @@ def script_problems(package_dir: str) -> List[str]:
                 continue
             rel = os.path.relpath(path, os.path.dirname(package_dir))
             if not os.access(path, os.X_OK):
-                problems.append("%s starts with #! but is not executable, so rosrun cannot start it "
-                                "(chmod +x %s, and keep the bit in what you hand in)" % (rel, name))
+                problems.append(causes.finding(
+                    "not_executable", "%s starts with #! but is not executable, so rosrun cannot start it "
+                                      "(chmod +x %s, and keep the bit in what you hand in)" % (rel, name)))
             if first.rstrip(b"\n").endswith(b"\r"):
-                problems.append("%s has Windows line endings: its #! line asks for '%s\\r', which does not "
+                problems.append(causes.finding(
+                    "windows_line_endings", "%s has Windows line endings: its #! line asks for '%s\\r', which does not "
                                 "exist (convert it to Unix line endings, e.g. dos2unix %s)"
-                                % (rel, (first[2:].decode(errors="replace").split() or ["?"])[-1], name))
+                                % (rel, (first[2:].decode(errors="replace").split() or ["?"])[-1], name)))
     return problems

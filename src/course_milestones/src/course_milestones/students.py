@@ -32,7 +32,7 @@ from typing import Callable, Dict, List, NamedTuple, Optional, Sequence, Tuple, 
 from course_sandbox import policy as sandbox_policy
 from course_sandbox.run import RunSandbox
 
-from course_milestones import master_log
+from course_milestones import causes, master_log
 from course_milestones.discovery import (CALLER, Registration, describe as describe_names, list_executables,
                                          new_registrations, node_uris, own_names, registrations_with_uris)
 from course_testkit.artifacts import artifact_path
@@ -175,6 +175,14 @@ def describe(started: Sequence[Script], known: Dict[str, int]) -> str:
     return "; ".join(parts) or "(no executables)"
 
 
+def role_missing(text: str, started: Sequence[Script], known: Dict[str, int], kind: str) -> str:
+    """`text`, the failure when no started executable registered the topic asked for, carrying the
+    cause wrong_topic when one did register a topic of its own of that `kind` (publishes,
+    subscribes): the code is there, on another name than the text's."""
+    other = any(own_names(getattr(r, kind)) for s in started for r in registrations_of(s, known))
+    return causes.finding("wrong_topic", text) if other else text
+
+
 def servers_first(paths: Sequence[str]) -> List[str]:
     """`paths` with the likely service servers first (source mentions rospy.Service, name says
     server): only the order of trying changes, and a client tried first only costs time."""
@@ -264,13 +272,16 @@ def start_and_wait(command: Sequence[str], wanted: Callable[[Registration], bool
 
 class Attempt(str):
     """What a started executable did, in words; `left`: it did register what was asked, then
-    stopped (the cause to tell first: the rest of a failure message follows from it)."""
+    stopped (the cause to tell first: the rest of a failure message follows from it), and how
+    (`cause`, a causes key)."""
     left = False
+    cause = ""
 
 
-def _left(text: str) -> Attempt:
+def _left(text: str, cause: str) -> Attempt:
     attempt = Attempt(text)
     attempt.left = True
+    attempt.cause = cause
     return attempt
 
 
@@ -289,8 +300,9 @@ def describe_attempt(name: str, keyboard: PtyKeyboard, seen: Sequence[Registrati
         if running:
             stopped = "stopped listening" if own_names(did[0].subscribes) \
                 and not own_names(did[0].publishes + did[0].services) else "unregistered it"
-            return _left("%s %s, then %s while still running: %s" % (name, what, stopped, ONE_MESSAGE))
-        return _left("%s %s, then %s" % (name, what, ended))
+            return _left("%s %s, then %s while still running: %s" % (name, what, stopped, ONE_MESSAGE),
+                         "stopped_listening" if stopped == "stopped listening" else "unregistered")
+        return _left("%s %s, then %s" % (name, what, ended), "node_exited")
     if seen:
         names = sorted({n for r in seen for n in own_names(r.publishes + r.subscribes + r.services)})
         words = "%s registered %s (%s)" % (name, ", ".join(r.node for r in seen), ", ".join(names) or "no topics")
@@ -318,8 +330,8 @@ def not_found_message(pkg: str, what: str, tried: Sequence[str]) -> str:
     left = [t for t in tried if getattr(t, "left", False)]
     if left:  # it did what was asked, then stopped: that is the cause, said first
         others = [t for t in tried if t not in left]
-        return "%s; so no executable in package %s %s any more (found: %s%s)" % (
-            "; ".join(left), pkg, what, describe_names(executables), "".join("; " + t for t in others))
+        return causes.finding(left[0].cause, "%s; so no executable in package %s %s any more (found: %s%s)" % (
+            "; ".join(left), pkg, what, describe_names(executables), "".join("; " + t for t in others)))
     return "no executable in package %s %s (found: %s; %s)" % (pkg, what, describe_names(executables),
                                                                 "; ".join(tried))
 

@@ -15,6 +15,7 @@ import os
 import re
 from typing import List
 
+from course_milestones import causes
 from course_milestones.scripts import SKIPPED_DIRS
 
 _FUNCTIONS = {"msg": "add_message_files", "srv": "add_service_files", "action": "add_action_files"}
@@ -87,14 +88,17 @@ def problems(package_dir: str, pkg: str, devel: str) -> List[str]:
         for base in _definitions(package_dir, kind):
             module, folder = (base + "Action", "msg") if kind == "action" else (base, kind)
             if not generated(folder, module):
-                found.append("%s/%s is not built (%s/%s/%s.%s has no generated code): %s"
-                             % (pkg, base, pkg, kind, base, kind, _advice(pkg, kind, base, cmake)))
+                found.append(causes.finding(
+                    "messages_not_built", "%s/%s is not built (%s/%s/%s.%s has no generated code): %s"
+                    % (pkg, base, pkg, kind, base, kind, _advice(pkg, kind, base, cmake))))
     src = os.path.join(package_dir, "src")
     for module in sorted(os.listdir(src)) if os.path.isdir(src) and not os.path.islink(src) else []:
         if module in SKIPPED_DIRS or not _regular_file(os.path.join(src, module, "__init__.py")):
             continue
         if not any(_catkin_shim(os.path.join(site, module, "__init__.py")) for site in sites):
-            found.append("%s/src/%s is a Python module but is not built, so the package's nodes cannot import it: "
+            found.append(causes.finding(
+                "module_not_built", "%s/src/%s is a Python module but is not built, so the package's nodes cannot "
+                "import it: "
                          "add a setup.py naming it and call catkin_python_setup() in %s's CMakeLists.txt"
-                         % (pkg, module, pkg))
+                         % (pkg, module, pkg)))
     return found

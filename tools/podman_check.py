@@ -468,10 +468,10 @@ def jupyter_check(scratch: Path, log: Path) -> bool:
                   "contents API, catkin_make: built; %s on the host's folder, owner uid %s"
                   % (talker.relative_to(work), talker.stat().st_uid if talker.exists() else "-"))
             code, said = term.run("course-check", student_lab.CHECK_TIMEOUT_S)
-            isolation = re.search(r"isolation: [^\n]*", said)
-            check(code == 0 and student_lab.PASSED in said, "course-check: exit %d, %r; %s" % (
+            isolation = re.search(r"isolation: ([^:\n]+)", said)
+            check(code == 0 and student_lab.PASSED in said, "course-check: exit %d, %r; isolation %s" % (
                 code, student_lab.PASSED if student_lab.PASSED in said else said[-300:],
-                isolation.group(0)[:80] if isolation else "no isolation line"))
+                isolation.group(1) if isolation else "not said"))
             buggy = student_lab.make_buggy_copy(server, term)
             code, said = term.run("course-check ~/%s --out ~/buggy-check" % buggy, student_lab.CHECK_TIMEOUT_S)
             check(code == 1 and student_lab.FAILED in said and student_lab.BUGGY_REASON in said,

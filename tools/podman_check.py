@@ -36,8 +36,10 @@ from pathlib import Path
 from typing import Dict, List, Optional, Sequence, Tuple
 
 ROOT = Path(__file__).resolve().parents[1]
-# course_testkit's rosbridge driver needs tornado alone, which Debian's python3 has.
-sys.path.insert(0, str(ROOT / "src" / "course_testkit" / "src"))
+# course_testkit's Jupyter and rosbridge clients need tornado alone, which Debian's python3 has;
+# course_sandbox.procs reads /proc.
+sys.path[:0] = [str(ROOT / "src" / "course_testkit" / "src"), str(ROOT / "src" / "course_sandbox" / "src")]
+from course_sandbox import procs  # noqa: E402
 from course_testkit import student_lab  # noqa: E402
 from course_testkit.jupyter import JupyterError, JupyterServer, refused_websocket  # noqa: E402
 from course_testkit.rosbridge import drive_turtle  # noqa: E402
@@ -384,30 +386,9 @@ def start_workbench(server: JupyterServer, name: str, work: Path, log: Path) -> 
 
 
 def tree_cpu_seconds(pid: int) -> float:
-    """CPU seconds used by `pid` and every process below it, the ended ones included (each parent
-    adds its waited-for children's): a container's start-up's cost, whatever the machine's load."""
-    parents: Dict[int, int] = {}
-    for entry in os.listdir("/proc"):
-        if entry.isdigit():
-            try:
-                with open("/proc/%s/stat" % entry) as f:
-                    fields = f.read().rsplit(")", 1)[1].split()
-            except OSError:
-                continue
-            parents[int(entry)] = int(fields[1])
-
-    def cpu(process: int) -> float:
-        try:
-            with open("/proc/%d/stat" % process) as f:
-                fields = f.read().rsplit(")", 1)[1].split()
-        except OSError:
-            return 0.0
-        return sum(int(v) for v in fields[11:15]) / os.sysconf("SC_CLK_TCK")  # utime stime cutime cstime
-    tree, frontier = [pid], [pid]
-    while frontier:
-        frontier = [child for child, parent in parents.items() if parent in frontier]
-        tree += frontier
-    return sum(cpu(process) for process in tree)
+    """CPU seconds used by `pid` and every process below it, the ended ones included: a
+    container's start-up's cost, whatever the machine's load."""
+    return sum(procs.cpu_with_ended_children(p) or 0.0 for p in [pid] + procs.descendants(pid))
 
 
 def start_figure(times: Optional[Tuple[float, ...]]) -> str:

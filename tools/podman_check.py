@@ -127,6 +127,12 @@ def without_default_ulimits(conf: str) -> str:
     return conf + ("\n" if conf and not conf.endswith("\n") else "") + "[containers]\ndefault_ulimits = []\n"
 
 
+def container_name(what: str) -> str:
+    """A container's name of this run's own: two checks at once (two checkouts) never remove each
+    other's containers."""
+    return "ros-course-%s-%d" % (what, os.getpid())
+
+
 def remove_container(name: str) -> None:
     """Remove the container `name` if there is one (left by an interrupted check, or done with)."""
     podman("rm", "-f", name, check=False, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
@@ -299,7 +305,7 @@ def lab_check(log: Path) -> bool:
     the page through the published port with the token, refused without it, the turtle moved
     through the page's websocket."""
     port = free_port()
-    name = "ros-course-lab-check"
+    name = container_name("lab-check")
     remove_container(name)
     podman("run", "-d", "--name", name, "-p", "127.0.0.1:%d:8080" % port, COURSE_IMAGE, "make", "lab", log=log)
     try:
@@ -410,7 +416,7 @@ def jupyter_starts(runs: int, scratch: Path, log: Path) -> bool:
         work = scratch / ("start-%d" % run)
         work.mkdir()
         os.chown(work, *(2 * [image_uid(COURSE_IMAGE)]))
-        name = "ros-course-jupyter-start"
+        name = container_name("jupyter-start")
         try:
             times = start_workbench(JupyterServer(free_port(), secrets.token_hex(16)), name, work, log)
         finally:
@@ -436,7 +442,7 @@ def jupyter_check(scratch: Path, log: Path) -> bool:
     work.mkdir()
     uid = image_uid(COURSE_IMAGE)
     os.chown(work, uid, uid)
-    server, name = JupyterServer(free_port(), secrets.token_hex(16)), "ros-course-jupyter-check"
+    server, name = JupyterServer(free_port(), secrets.token_hex(16)), container_name("jupyter-check")
     try:
         times = start_workbench(server, name, work, log)
         if not check(times is not None, "podman run to a usable JupyterLab: " + start_figure(times)):
@@ -494,7 +500,7 @@ def build_autograder_image(zip_path: Path, scratch: Path, log: Path) -> None:
     committed as the image every submission is graded in."""
     source = scratch / "source"
     unpack_zip(zip_path, source)
-    name = "ros-course-autograder-setup"
+    name = container_name("autograder-setup")
     remove_container(name)
     script = ("set -e; mkdir -p /autograder/results; cp -a /mnt/source /autograder/source; "
               "bash /autograder/source/setup.sh; cp /autograder/source/run_autograder /autograder/run_autograder")

@@ -82,10 +82,10 @@ bench: build
 bench-grade: build
 	@$(REFENV) cd $(ROOT) && python3 bench/grade_bench.py && python3 bench/similarity_bench.py
 
-# docker/Dockerfile built without a Docker engine, in a debootstrap chroot, then its CMD (the demo)
-# run as the image's user. Needs root; downloads ~1 GB; 10-20 min. DOCKER_CHECK_ARGS="--keep" etc.
-# docker/Dockerfile built and run by podman (root): the demo, then make test in a container; each
-# step's time. DOCKER_CHECK_ARGS="--skip-test" or "--rebuild". See tools/podman_check.py.
+# docker/Dockerfile built and run by podman (root): the demo, make lab and make jupyter through their
+# published ports, then make grade and make test in containers; each step's time.
+# DOCKER_CHECK_ARGS="--skip-test" or "--rebuild"; COURSE_IMAGE=... INSTRUCTOR_IMAGE=... other tags.
+# See tools/podman_check.py.
 docker-check:
 	@/usr/bin/python3 $(ROOT)/tools/podman_check.py docker-check $(DOCKER_CHECK_ARGS)
 

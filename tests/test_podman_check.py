@@ -70,3 +70,9 @@ def test_each_check_prints_one_line_and_any_failure_fails_them_all(capsys):
     assert check(True, "c") and not check.ok
     lines = capsys.readouterr().out.splitlines()
     assert [line.split()[:2] for line in lines] == [["jupyter:", "ok"], ["jupyter:", "FAILED"], ["jupyter:", "ok"]]
+
+
+def test_container_names_are_this_runs_own():
+    import os
+    name = podman_check.container_name("jupyter-check")
+    assert name == "ros-course-jupyter-check-%d" % os.getpid()

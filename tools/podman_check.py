@@ -5,6 +5,8 @@ Debian's podman (as root: this machine's podman needs runc, cgroupfs and no defa
     sudo python3 tools/podman_check.py image                 # base image (once) + docker/Dockerfile's two images
     sudo python3 tools/podman_check.py docker-check          # both images: the demo, no answers in the
                                                              # student's; make grade and make test in the instructor's
+    sudo python3 tools/podman_check.py jupyter-check [--runs 5]  # make jupyter in the built student image:
+                                                             # the lab through its port; the start-up timed
     sudo python3 tools/podman_check.py autograder-check ZIP  # Gradescope's way, in containers
 
 No image registry is reachable here, so `debian:bookworm` is imported once from a debootstrap
@@ -24,6 +26,7 @@ import os
 import re
 import secrets
 import shutil
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -33,8 +36,10 @@ from pathlib import Path
 from typing import Dict, List, Optional, Sequence, Tuple
 
 ROOT = Path(__file__).resolve().parents[1]
-# course_testkit's rosbridge driver needs tornado alone, which Debian's python3 has.
-sys.path.insert(0, str(ROOT / "src" / "course_testkit" / "src"))
+# course_testkit's Jupyter and rosbridge clients need tornado alone, which Debian's python3 has;
+# course_sandbox.procs reads /proc.
+sys.path[:0] = [str(ROOT / "src" / "course_testkit" / "src"), str(ROOT / "src" / "course_sandbox" / "src")]
+from course_sandbox import procs  # noqa: E402
 from course_testkit import student_lab  # noqa: E402
 from course_testkit.jupyter import JupyterError, JupyterServer, refused_websocket  # noqa: E402
 from course_testkit.rosbridge import drive_turtle  # noqa: E402
@@ -124,6 +129,12 @@ def without_default_ulimits(conf: str) -> str:
     if re.search(r"^\[containers\][ \t]*$", conf, re.MULTILINE):
         return re.sub(r"^\[containers\][ \t]*$", "[containers]\ndefault_ulimits = []", conf, count=1, flags=re.MULTILINE)
     return conf + ("\n" if conf and not conf.endswith("\n") else "") + "[containers]\ndefault_ulimits = []\n"
+
+
+def container_name(what: str) -> str:
+    """A container's name of this run's own: two checks at once (two checkouts) never remove each
+    other's containers."""
+    return "ros-course-%s-%d" % (what, os.getpid())
 
 
 def remove_container(name: str) -> None:
@@ -291,7 +302,7 @@ def lab_check(log: Path) -> bool:
     the page through the published port with the token, refused without it, the turtle moved
     through the page's websocket."""
     port = free_port()
-    name = "ros-course-lab-check"
+    name = container_name("lab-check")
     remove_container(name)
     podman("run", "-d", "--name", name, "-p", "127.0.0.1:%d:8080" % port, COURSE_IMAGE, "make", "lab", log=log)
     try:
@@ -335,9 +346,9 @@ class Checks:
         return bool(passed)
 
 
-def usable_after(server: JupyterServer, began: float, name: str) -> Optional[float]:
-    """Seconds from `began` until the server's REST API answers and a new terminal runs a command;
-    None when the container ends or JUPYTER_START_S passes first."""
+def usable_after(server: JupyterServer, began: float, name: str) -> Optional[Tuple[float, float]]:
+    """Seconds from `began` until the server's REST API answers, and until a new terminal has run a
+    command; None when the container ends or JUPYTER_START_S passes first."""
     polls = iter(range(1 << 30))
 
     def answering() -> bool:
@@ -351,33 +362,87 @@ def usable_after(server: JupyterServer, began: float, name: str) -> Optional[flo
         return False
     if not wait_for(answering, JUPYTER_START_S, 0.05):
         return None
+    rest = time.monotonic() - began
     with server.terminal() as term:
         term.run("true")
-    return time.monotonic() - began
+    return rest, time.monotonic() - began
+
+
+def start_workbench(server: JupyterServer, name: str, work: Path, log: Path) -> Optional[Tuple[float, ...]]:
+    """`make jupyter` in a container `name` of the student image as the README says: the port
+    published on the host's loopback, `work` mounted as ~/catkin_ws/src, JUPYTER_TOKEN set (from
+    podman's environment: not on a command line). Seconds from `podman run` to its return, to
+    REST answering and to a terminal's first command, and the load average before; None when it
+    did not start."""
+    remove_container(name)
+    load = os.getloadavg()[0]
+    began = time.monotonic()
+    podman("run", "-d", "--name", name, "-p", "127.0.0.1:%d:8888" % server.port, "-e", "JUPYTER_TOKEN",
+           "-v", "%s:/home/student/catkin_ws/src" % work, COURSE_IMAGE, "make", "jupyter", log=log,
+           env=dict(os.environ, JUPYTER_TOKEN=server.token))
+    created = time.monotonic() - began
+    times = usable_after(server, began, name)
+    if times is None:
+        return None
+    pid = podman("inspect", "-f", "{{.State.Pid}}", name, stdout=subprocess.PIPE, text=True).stdout.strip()
+    return (created, *times, load, tree_cpu_seconds(int(pid)))
+
+
+def tree_cpu_seconds(pid: int) -> float:
+    """CPU seconds used by `pid` and every process below it, the ended ones included: a
+    container's start-up's cost, whatever the machine's load."""
+    return sum(procs.cpu_with_ended_children(p) or 0.0 for p in [pid] + procs.descendants(pid))
+
+
+def start_figure(times: Optional[Tuple[float, ...]]) -> str:
+    """The start-up's figure, not a verdict: a loaded machine may miss the target and still work."""
+    if times is None:
+        return "not within %.0f s" % JUPYTER_START_S
+    created, rest, usable, load, cpu = times
+    return ("podman run -d returned after %.1f s, REST answered after %.1f s, a terminal ran a command after %.1f s "
+            "(%s the target <= %.0f s; load average %.1f before); the container's processes used %.1f CPU s"
+            % (created, rest, usable, "meets" if usable <= TARGET_START_S else "MISSES", TARGET_START_S, load, cpu))
+
+
+def jupyter_starts(runs: int, scratch: Path, log: Path) -> bool:
+    """The start-up alone, `runs` times (each a fresh container and an empty folder): each run's
+    figure, then the median and the worst."""
+    usable: List[float] = []
+    cpus: List[float] = []
+    for run in range(runs):
+        work = scratch / ("start-%d" % run)
+        work.mkdir()
+        os.chown(work, *(2 * [image_uid(COURSE_IMAGE)]))
+        name = container_name("jupyter-start")
+        try:
+            times = start_workbench(JupyterServer(free_port(), secrets.token_hex(16)), name, work, log)
+        finally:
+            remove_container(name)
+        print("jupyter start %d: %s" % (run + 1, start_figure(times)), flush=True)
+        if times is None:
+            return False
+        usable.append(times[2])
+        cpus.append(times[4])
+    print("jupyter start: podman run to a usable JupyterLab, median %.1f s, worst %.1f s over %d runs (target <= "
+          "%.0f s); CPU used, median %.1f s" % (statistics.median(usable), max(usable), runs, TARGET_START_S,
+                                              statistics.median(cpus)), flush=True)
+    return True
 
 
 def jupyter_check(scratch: Path, log: Path) -> bool:
-    """`make jupyter` in the student image as its README says (the port published on the host's
-    loopback, the student's folder mounted as ~/catkin_ws/src, JUPYTER_TOKEN set), then through
-    the published port what the workbench's tests do on the host: a lab in a terminal and the
-    contents API, the self-check passing it and failing a buggy copy with its reason, the lab
-    page and its websocket, and a wrong or missing token refused. One line per check."""
+    """`make jupyter` in the student image (start_workbench), then through the published port what
+    the workbench's tests do on the host: a lab in a terminal and the contents API, the self-check
+    passing it and failing a buggy copy with its reason, the lab page and its websocket, and a
+    wrong or missing token refused. One line per check."""
     check = Checks("jupyter")
     work = scratch / "work"
     work.mkdir()
     uid = image_uid(COURSE_IMAGE)
     os.chown(work, uid, uid)
-    port, token, name = free_port(), secrets.token_hex(16), "ros-course-jupyter-check"
-    server = JupyterServer(port, token)
-    remove_container(name)
-    began = time.monotonic()
-    podman("run", "-d", "--name", name, "-p", "127.0.0.1:%d:8888" % port, "-e", "JUPYTER_TOKEN",
-           "-v", "%s:/home/student/catkin_ws/src" % work, COURSE_IMAGE, "make", "jupyter", log=log,
-           env=dict(os.environ, JUPYTER_TOKEN=token))
+    server, name = JupyterServer(free_port(), secrets.token_hex(16)), container_name("jupyter-check")
     try:
-        usable = usable_after(server, began, name)
-        if not check(usable is not None, "podman run to a usable JupyterLab (REST answers, a terminal runs a "
-                     "command): %s (target <= %.0f s)" % ("%.1f s" % usable if usable else "never", TARGET_START_S)):
+        times = start_workbench(server, name, work, log)
+        if not check(times is not None, "podman run to a usable JupyterLab: " + start_figure(times)):
             return False
         with server.terminal() as term:
             student_lab.make_chatter(server, term)  # each step must succeed, or JupyterError
@@ -387,10 +452,10 @@ def jupyter_check(scratch: Path, log: Path) -> bool:
                   "contents API, catkin_make: built; %s on the host's folder, owner uid %s"
                   % (talker.relative_to(work), talker.stat().st_uid if talker.exists() else "-"))
             code, said = term.run("course-check", student_lab.CHECK_TIMEOUT_S)
-            isolation = re.search(r"isolation: [^\n]*", said)
-            check(code == 0 and student_lab.PASSED in said, "course-check: exit %d, %r; %s" % (
+            isolation = re.search(r"isolation: ([^:\n]+)", said)
+            check(code == 0 and student_lab.PASSED in said, "course-check: exit %d, %r; isolation %s" % (
                 code, student_lab.PASSED if student_lab.PASSED in said else said[-300:],
-                isolation.group(0)[:80] if isolation else "no isolation line"))
+                isolation.group(1) if isolation else "not said"))
             buggy = student_lab.make_buggy_copy(server, term)
             code, said = term.run("course-check ~/%s --out ~/buggy-check" % buggy, student_lab.CHECK_TIMEOUT_S)
             check(code == 1 and student_lab.FAILED in said and student_lab.BUGGY_REASON in said,
@@ -399,8 +464,8 @@ def jupyter_check(scratch: Path, log: Path) -> bool:
                       else said[-300:]))
         status, page, _ = server.request("GET", "/roslab/")
         check(status == 200 and b"<html" in page.lower(), "/roslab/ with the token -> %d" % status)
-        ws = "ws://127.0.0.1:%d/roslab/websocket" % port
-        before, after = drive_turtle("%s?token=%s" % (ws, token))
+        ws = "ws://127.0.0.1:%d/roslab/websocket" % server.port
+        before, after = drive_turtle("%s?token=%s" % (ws, server.token))
         check(after - before > 1.0, "turtle1 x %.2f -> %.2f driven through /roslab/websocket" % (before, after))
         refused = {"/api/contents, wrong token": server.status("/api/contents", token="not-the-token"),
                    "/api/contents, no token": server.status("/api/contents", token=None),
@@ -432,7 +497,7 @@ def build_autograder_image(zip_path: Path, scratch: Path, log: Path) -> None:
     committed as the image every submission is graded in."""
     source = scratch / "source"
     unpack_zip(zip_path, source)
-    name = "ros-course-autograder-setup"
+    name = container_name("autograder-setup")
     remove_container(name)
     script = ("set -e; mkdir -p /autograder/results; cp -a /mnt/source /autograder/source; "
               "bash /autograder/source/setup.sh; cp /autograder/source/run_autograder /autograder/run_autograder")
@@ -515,6 +580,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     check.add_argument("--rebuild", action="store_true", help="build twice: the second from cached layers")
     check.add_argument("--skip-test", action="store_true", help="do not run make test in the container")
     check.add_argument("--grade-class", metavar="DIR", help="also `make grade` this class folder in the image")
+    jupyter = sub.add_parser("jupyter-check", help="make jupyter in the student image already built (no build): "
+                             "the lab through its published port, then the start-up --runs more times")
+    jupyter.add_argument("--runs", type=int, default=0, help="start-ups to time after the check (default none)")
     grader = sub.add_parser("autograder-check", help="Gradescope's setup.sh and run_autograder in containers")
     grader.add_argument("zip", help="autograder.zip made with MILESTONES=chatter")
     parser.add_argument("--logs", default=str(ROOT / "podman-logs"), help="where each step's log goes")
@@ -534,6 +602,12 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             ok = True
         elif opts.action == "docker-check":
             ok = docker_check(opts, steps, scratch, logs)
+        elif opts.action == "jupyter-check":
+            ok = steps.run("make jupyter through a published port, as user student", jupyter_check, scratch,
+                           logs / "jupyter.log")
+            if opts.runs:
+                ok &= steps.run("make jupyter's start-up, %d times" % opts.runs, jupyter_starts, opts.runs, scratch,
+                                logs / "jupyter-starts.log")
         else:
             ok = autograder_check(opts, steps, scratch, logs)
     except Unavailable as e:

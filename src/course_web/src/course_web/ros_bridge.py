@@ -20,6 +20,7 @@ import rosgraph
 import rospy
 import rosservice
 
+from course_net.rpc import TimedTransport
 from course_web import frames
 from course_web.introspect import ApiError
 from course_web.convert import ConversionError, json_to_message, message_class, message_to_json, service_class
@@ -227,19 +228,6 @@ class RosBridge(Bridge):
 
     def shutdown(self) -> None:
         """Nothing to wait for: a call still running is on a daemon thread."""
-
-
-class TimedTransport(xmlrpc.client.Transport):
-    """XML-RPC over HTTP with a time limit: a stuck master or node must not stall the caller."""
-
-    def __init__(self, timeout: float) -> None:
-        super().__init__()
-        self.timeout = timeout
-
-    def make_connection(self, host):
-        connection = super().make_connection(host)
-        connection.timeout = self.timeout
-        return connection
 
 
 class RosMaster:

@@ -35,7 +35,7 @@ from typing import Dict, List, Optional, Sequence
 import roslib.packages
 
 from course_net.ports import free_port
-from course_web.ros_bridge import TimedTransport
+from course_net.rpc import TimedTransport
 from course_workbench.startup import DEFAULT_MASTER_URI, TOKEN_VAR
 
 CALLER_ID = "/workbench_roslab"

@@ -87,3 +87,12 @@ def test_the_settings_file_is_the_users_alone(tmp_path):
     path = startup.write_settings(settings(), str(tmp_path / "conf"))
     assert os.stat(path).st_mode & 0o777 == 0o600
     assert os.stat(str(tmp_path / "conf")).st_mode & 0o777 == 0o700
+
+
+def test_under_a_hub_the_hubs_login_replaces_the_token_and_the_hub_says_where_to_listen():
+    args = argparse.Namespace(address="0.0.0.0", overlay="/home/student/catkin_ws")
+    given = startup.jupyter_settings(FakeCourse(), args, 8888, "tok", "/home/student", hub=True)
+    assert "IdentityProvider" not in given
+    assert not {"ip", "port", "port_retries"} & set(given["ServerApp"])
+    assert given["ServerApp"]["terminado_settings"] == settings()["ServerApp"]["terminado_settings"]
+    assert given["ServerProxy"]["servers"]["roslab"]["request_headers_override"] == {"Cookie": "course_web_token=tok"}

@@ -9,7 +9,9 @@ then anything left that carries its run token (course_testkit.isolation), and re
 
 `Terminal` is one of JupyterLab's terminals (`POST /api/terminals`, then the websocket
 `/terminals/websocket/<name>`, JSON ["stdin", text] in and ["stdout", text] out): `run(command)`
-types a command line and returns its exit status and what it printed.
+types a command line and returns its exit status and what it printed. It works on any
+`JupyterSession`: the workbench with its token here, a hub's user with their login cookies
+(course_testkit.hub).
 """
 from __future__ import annotations
 
@@ -29,6 +31,7 @@ import urllib.request
 import uuid
 from typing import Any, Dict, Mapping, Optional, Sequence, Tuple
 
+from tornado.httpclient import HTTPRequest
 from tornado.websocket import websocket_connect
 
 from course_testkit import isolation
@@ -44,7 +47,38 @@ class WorkbenchError(RuntimeError):
     """The workbench did not start, or a terminal command did not finish in time."""
 
 
-class Workbench:
+class JupyterSession:
+    """A way into one Jupyter server: `request` (REST) and `websocket_request` (a websocket's URL and
+    headers); the REST calls the tests make, and terminals, on top of them."""
+
+    def request(self, method: str, path: str, body: Any = None, token: Optional[str] = "",
+                follow: bool = True) -> Tuple[int, bytes, Dict[str, str]]:
+        raise NotImplementedError
+
+    def websocket_request(self, path: str) -> HTTPRequest:
+        raise NotImplementedError
+
+    def api(self, method: str, path: str, body: Any = None) -> Any:
+        """The JSON answer of a REST call that must succeed."""
+        status, data, _ = self.request(method, path, body)
+        if status >= 300:
+            raise WorkbenchError("%s %s -> %d: %s" % (method, path, status, data[:500].decode(errors="replace")))
+        return json.loads(data) if data else None
+
+    def write_file(self, path: str, text: str) -> Any:
+        """PUT /api/contents/<path>: a text file, relative to JupyterLab's root (the home)."""
+        return self.api("PUT", "/api/contents/" + path.lstrip("/"), {"type": "file", "format": "text", "content": text})
+
+    def make_folder(self, path: str) -> Any:
+        """PUT /api/contents/<path> as a directory (the file browser's New Folder)."""
+        return self.api("PUT", "/api/contents/" + path.lstrip("/"), {"type": "directory"})
+
+    def terminal(self) -> "Terminal":
+        name = self.api("POST", "/api/terminals")["name"]
+        return Terminal(self, name)
+
+
+class Workbench(JupyterSession):
     """A running workbench; use as a context manager (see the module docstring)."""
 
     def __init__(self, env: Optional[Mapping[str, str]] = None, home: Optional[str] = None,
@@ -144,24 +178,8 @@ class Workbench:
         except OSError:
             return None
 
-    def api(self, method: str, path: str, body: Any = None) -> Any:
-        """The JSON answer of a REST call that must succeed."""
-        status, data, _ = self.request(method, path, body)
-        if status >= 300:
-            raise WorkbenchError("%s %s -> %d: %s" % (method, path, status, data[:500].decode(errors="replace")))
-        return json.loads(data) if data else None
-
-    def write_file(self, path: str, text: str) -> Any:
-        """PUT /api/contents/<path>: a text file, relative to JupyterLab's root (the home)."""
-        return self.api("PUT", "/api/contents/" + path.lstrip("/"), {"type": "file", "format": "text", "content": text})
-
-    def make_folder(self, path: str) -> Any:
-        """PUT /api/contents/<path> as a directory (the file browser's New Folder)."""
-        return self.api("PUT", "/api/contents/" + path.lstrip("/"), {"type": "directory"})
-
-    def terminal(self) -> "Terminal":
-        name = self.api("POST", "/api/terminals")["name"]
-        return Terminal(self, name)
+    def websocket_request(self, path: str) -> HTTPRequest:
+        return HTTPRequest("ws://127.0.0.1:%d%s?token=%s" % (self.port, path, self.token))
 
 
 class _NoRedirect(urllib.request.HTTPRedirectHandler):
@@ -176,16 +194,16 @@ _ANSI = re.compile(r"\x1b(\[[0-9;?]*[ -/]*[@-~]|\][^\x07\x1b]*(\x07|\x1b\\)?|[()
 class Terminal:
     """One of JupyterLab's terminals, through its websocket (see the module docstring)."""
 
-    def __init__(self, workbench: Workbench, name: str) -> None:
+    def __init__(self, workbench: JupyterSession, name: str) -> None:
         self.workbench, self.name = workbench, name
         # The websocket's loop runs all the time, in a thread of its own: Jupyter pings its
         # terminals' websockets and closes one that leaves its pings unanswered.
         self.loop = asyncio.new_event_loop()
         self.thread = threading.Thread(target=self.loop.run_forever, name="terminal-%s" % name, daemon=True)
         self.thread.start()
-        url = "ws://127.0.0.1:%d/terminals/websocket/%s?token=%s" % (workbench.port, name, workbench.token)
         self.pending = ""
-        self.socket = self._call(self._connect(url), REQUEST_TIMEOUT_S)
+        self.socket = self._call(self._connect(workbench.websocket_request("/terminals/websocket/%s" % name)),
+                                 REQUEST_TIMEOUT_S)
 
     def _call(self, coroutine: Any, timeout: float) -> Any:
         """Run `coroutine` on the websocket's loop; its result."""
@@ -207,8 +225,9 @@ class Terminal:
         return int(found.group(1)), text[start:found.start()]
 
     @staticmethod
-    async def _connect(url: str):
-        return await websocket_connect(url, connect_timeout=REQUEST_TIMEOUT_S)
+    async def _connect(request: HTTPRequest):
+        request.connect_timeout = REQUEST_TIMEOUT_S
+        return await websocket_connect(request)
 
     async def _send(self, message: list) -> None:
         await self.socket.write_message(json.dumps(message))

@@ -60,9 +60,11 @@ fi
 # configurable-http-proxy in a local prefix (.hub/node, pinned in deploy/jupyterhub/package.json).
 if [ "${COURSE_HUB:-0}" = 1 ]; then
   hub_missing=()
-  for pkg in podman runc nodejs npm; do
+  for pkg in podman runc; do
     dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed" || hub_missing+=("$pkg")
   done
+  # npm: Debian's nodejs and npm, unless a node that brings its own npm (nodesource's) is there
+  command -v npm >/dev/null || hub_missing+=(nodejs npm)
   if [ "${#hub_missing[@]}" -gt 0 ]; then
     echo "deps: installing the hub's Debian packages: ${hub_missing[*]}"
     $sudo apt-get update

@@ -72,6 +72,7 @@ load_subconfig(%(course)r)  # noqa: F821
 course_limit = c.DockerSpawner.mem_limit
 c.DockerSpawner.mem_limit = lambda spawner: %(small)r if spawner.user.name == %(failing)r else course_limit
 c.JupyterHub.hub_port = %(hub_port)d
+c.ConfigurableHTTPProxy.api_url = "http://127.0.0.1:%(proxy_api_port)d"
 # the check runs the culler itself, when it wants the servers culled
 c.JupyterHub.services = [{"name": "idle-culler", "api_token": %(culler_token)r}]
 '''
@@ -135,7 +136,7 @@ class Hub:
         self.config = work / "hub_check_config.py"
         self.config.write_text(CHECK_CONFIG % {
             "course": str(ROOT / "deploy" / "jupyterhub" / "jupyterhub_config.py"), "small": TOO_LITTLE_MEMORY,
-            "failing": FAILING, "hub_port": free_port(), "culler_token": self.culler_token})
+            "failing": FAILING, "hub_port": free_port(), "proxy_api_port": free_port(), "culler_token": self.culler_token})
         self.env = dict(os.environ, HUB_DATA=str(self.data), HUB_CLASS_LIST=str(self.class_list), HUB_IMAGE=image,
                         HUB_URL=self.url)
         self.env.pop("DOCKER_HOST", None)

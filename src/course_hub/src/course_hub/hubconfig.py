@@ -29,6 +29,7 @@ settings, names, folders) are unit-tested without them.
 """
 from __future__ import annotations
 
+import asyncio
 import os
 import sys
 from dataclasses import dataclass, field
@@ -108,17 +109,21 @@ def remove_network(client: Any, user: str) -> None:
 
 
 def make_hooks(settings: HubSettings):
-    """The spawner's pre-spawn and post-stop hooks (folders and network of the user)."""
+    """The spawner's pre-spawn and post-stop hooks (folders and network of the user). They are
+    coroutines: the engine's API calls run in a thread, as DockerSpawner's own do, so a slow
+    engine never stalls the hub's event loop (every other user's page)."""
 
-    def pre_spawn(spawner: Any) -> None:
-        user = spawner.user.name
-        ensure_user_folders(settings.data_dir, user, settings.student_uid)
-        gateway = ensure_network(spawner.client, user)
-        spawner.network_name = network_name(user)
+    def prepare(spawner: Any) -> str:
+        ensure_user_folders(settings.data_dir, spawner.user.name, settings.student_uid)
+        return ensure_network(spawner.client, spawner.user.name)
+
+    async def pre_spawn(spawner: Any) -> None:
+        gateway = await asyncio.get_running_loop().run_in_executor(None, prepare, spawner)
+        spawner.network_name = network_name(spawner.user.name)
         spawner.hub_connect_url = "http://%s:%d" % (gateway, urlparse(spawner.hub.api_url).port)
 
-    def post_stop(spawner: Any) -> None:
-        remove_network(spawner.client, spawner.user.name)
+    async def post_stop(spawner: Any) -> None:
+        await asyncio.get_running_loop().run_in_executor(None, remove_network, spawner.client, spawner.user.name)
 
     return pre_spawn, post_stop
 

@@ -2,6 +2,7 @@
 hooks against a stand-in engine client, the pins of the hub and the image agreeing."""
 from __future__ import annotations
 
+import asyncio
 import os
 import re
 import types
@@ -89,13 +90,13 @@ def test_before_a_spawn_the_user_gets_folders_and_an_isolated_network_the_hub_is
     engine = FakeEngine()
     spawner = types.SimpleNamespace(user=types.SimpleNamespace(name="alice"), client=engine,
                                     hub=types.SimpleNamespace(api_url="http://127.0.0.1:8123/hub/api"))
-    pre_spawn(spawner)
+    asyncio.run(pre_spawn(spawner))
     assert spawner.network_name == "course-hub-net-alice"
     assert engine.made == {"course-hub-net-alice": {"isolate": "true"}}
     assert spawner.hub_connect_url == "http://10.89.7.1:8123"
     assert os.path.isdir(tmp_path / "users" / "alice" / "src") and os.path.isdir(tmp_path / "users" / "alice" / "grades")
-    pre_spawn(spawner)  # again: the same network, nothing made twice
-    post_stop(spawner)
+    asyncio.run(pre_spawn(spawner))  # again: the same network, nothing made twice
+    asyncio.run(post_stop(spawner))
     assert engine.made == {}
 
 

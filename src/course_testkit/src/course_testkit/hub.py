@@ -83,7 +83,9 @@ class HubUser(JupyterSession):
         field = re.search(rb'name="_xsrf"\s+value="([^"]+)"', page)
         xsrf = field.group(1).decode() if field else (self.cookie("_xsrf", "/hub/") or "")
         form = urllib.parse.urlencode({"username": self.name, "password": self.password, "_xsrf": xsrf}).encode()
-        status, page, url = self.http("POST", "/hub/login", form,
+        # as a browser that opened the hub's home page: the login leads back there (a plain
+        # /hub/login leads to /hub/spawn, which starts the server: start() does that here)
+        status, page, url = self.http("POST", "/hub/login?next=%2Fhub%2Fhome", form,
                                       {"Content-Type": "application/x-www-form-urlencoded"})
         if status >= 400 or urllib.parse.urlparse(url).path.rstrip("/") == "/hub/login":
             raise WorkbenchError("login of %s refused (%d): %s" % (self.name, status, _text(page)))

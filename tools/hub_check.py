@@ -45,7 +45,6 @@ import sys
 import tempfile
 import time
 import traceback
-import urllib.request
 from pathlib import Path
 from typing import Callable, Dict, List, Optional
 
@@ -53,8 +52,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tools"))
 from podman_check import PODMAN, network_mounts  # noqa: E402
 
-from course_testkit import isolation  # noqa: E402
-from course_testkit.hub import HubUser, SpawnFailed  # noqa: E402
+from course_testkit.hub import HubUser, LocalHub, SpawnFailed  # noqa: E402
 from course_testkit.waiting import wait_for  # noqa: E402
 
 STUDENTS = ("alice", "bob", "carol")
@@ -65,17 +63,10 @@ MILESTONE = "chatter"
 SAMPLES = ROOT / "tests" / "submissions"
 FILES = {"alice": SAMPLES / "lab2_chatter_scripts" / "lab2" / "src" / "chatter",
          "bob": SAMPLES / "lab2_chatter_no_chmod" / "chatter"}
-HUB_TIMEOUT_S = 120.0
-CHECK_CONFIG = '''# hub_check's additions to the course's config (tools/hub_check.py)
-c = get_config()  # noqa: F821
-load_subconfig(%(course)r)  # noqa: F821
-course_limit = c.DockerSpawner.mem_limit
+# dave's server is given too little memory to start
+CHECK_CONFIG = '''course_limit = c.DockerSpawner.mem_limit
 c.DockerSpawner.mem_limit = lambda spawner: %(small)r if spawner.user.name == %(failing)r else course_limit
-c.JupyterHub.hub_port = %(hub_port)d
-c.ConfigurableHTTPProxy.api_url = "http://127.0.0.1:%(proxy_api_port)d"
-# the check runs the culler itself, when it wants the servers culled
-c.JupyterHub.services = [{"name": "idle-culler", "api_token": %(culler_token)r}]
-'''
+''' % {"small": TOO_LITTLE_MEMORY, "failing": FAILING}
 
 
 class Report:
@@ -102,10 +93,6 @@ class Report:
             return self.check(name, False, detail.replace("\n", " | ")[:1500])
 
 
-def free_port() -> int:
-    return isolation.free_port()
-
-
 def build_image(image: str, log: Path) -> None:
     scratch = Path(tempfile.mkdtemp(prefix="hub-check-build-"))
     try:
@@ -115,67 +102,6 @@ def build_image(image: str, log: Path) -> None:
                            check=True, stdout=out, stderr=subprocess.STDOUT)
     finally:
         shutil.rmtree(scratch, ignore_errors=True)
-
-
-class Hub:
-    """`make hub`'s runner on a scratch data folder and class list, with the check's config."""
-
-    def __init__(self, image: str, work: Path) -> None:
-        self.work = work
-        self.data = work / "data"
-        self.port = free_port()
-        self.url = "http://127.0.0.1:%d" % self.port
-        self.culler_token = secrets.token_hex(24)
-        self.class_list = work / "classlist.csv"
-        with open(self.class_list, "w", newline="") as out:
-            writer = csv.writer(out)
-            writer.writerow(["username", "role"])
-            writer.writerow([TA, "ta"])
-            for name in STUDENTS + (FAILING,):
-                writer.writerow([name, "student"])
-        self.config = work / "hub_check_config.py"
-        self.config.write_text(CHECK_CONFIG % {
-            "course": str(ROOT / "deploy" / "jupyterhub" / "jupyterhub_config.py"), "small": TOO_LITTLE_MEMORY,
-            "failing": FAILING, "hub_port": free_port(), "proxy_api_port": free_port(), "culler_token": self.culler_token})
-        self.env = dict(os.environ, HUB_DATA=str(self.data), HUB_CLASS_LIST=str(self.class_list), HUB_IMAGE=image,
-                        HUB_URL=self.url)
-        self.env.pop("DOCKER_HOST", None)
-        self.socket = "/run/ros-course-hub-check-%d/podman.sock" % os.getpid()
-        self.log = work / "hub.log"
-        self.proc: Optional[subprocess.Popen] = None
-
-    def start(self) -> str:
-        with open(self.log, "ab") as out:
-            self.proc = subprocess.Popen(
-                ["/usr/bin/python3", str(ROOT / "src" / "course_hub" / "scripts" / "hub"), "--config", str(self.config),
-                 "--jupyterhub", str(ROOT / ".venv-hub" / "bin" / "jupyterhub"), "--socket", self.socket],
-                env=self.env, stdout=out, stderr=subprocess.STDOUT, start_new_session=True, cwd=str(self.work))
-        if not wait_for(lambda: self.proc.poll() is not None or self.answers(), HUB_TIMEOUT_S, 0.2) or \
-                self.proc.poll() is not None:
-            raise AssertionError("the hub did not answer at %s; its log ends:\n%s" % (self.url, self.tail()))
-        return "%s answers (podman's Docker API on %s)" % (self.url, self.socket)
-
-    def answers(self) -> bool:
-        try:
-            with urllib.request.urlopen(self.url + "/hub/api/", timeout=5) as reply:
-                return reply.status == 200
-        except OSError:
-            return False
-
-    def tail(self, chars: int = 3000) -> str:
-        try:
-            return self.log.read_text(errors="replace")[-chars:]
-        except OSError:
-            return ""
-
-    def stop(self) -> None:
-        if self.proc is not None and self.proc.poll() is None:
-            os.killpg(self.proc.pid, signal.SIGTERM)
-            try:
-                self.proc.wait(120)
-            except subprocess.TimeoutExpired:
-                os.killpg(self.proc.pid, signal.SIGKILL)
-                self.proc.wait()
 
 
 def podman_out(*args: str) -> str:
@@ -221,7 +147,7 @@ def run(opts: argparse.Namespace) -> int:
     if not opts.no_build:
         report.attempt("image %s built from docker/Dockerfile" % opts.image,
                        lambda: (build_image(opts.image, work / "build.log"), "log in %s" % (work / "build.log"))[1])
-    hub = Hub(opts.image, work)
+    hub = LocalHub(opts.image, work, STUDENTS + (FAILING,), (TA,), CHECK_CONFIG)
     users: Dict[str, HubUser] = {}
     terms: Dict[str, object] = {}
     passwords = {name: secrets.token_urlsafe(12) for name in STUDENTS + (FAILING, TA)}

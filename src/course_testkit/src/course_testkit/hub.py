@@ -13,24 +13,48 @@
   only as an admin.
 - Then a `JupyterSession` on `/user/<owner>/`: the REST API, files, and terminals
   (course_testkit.workbench.Terminal) through the hub's proxy with the cookies alone, no token.
+
+`LocalHub(image, work, students, tas, extra_config)` is `make hub`'s own start (course_hub's
+runner, deploy/jupyterhub's config) on a scratch data folder and class list, on free ports, its
+own podman socket, and no managed culler (the caller runs jupyterhub-idle-culler with
+`culler_token` when it wants servers culled); `extra_config` is config text run after the
+course's. Root only, as `make hub`.
 """
 from __future__ import annotations
 
+import csv
 import http.cookiejar
 import json
+import os
 import re
+import secrets
+import signal
+import subprocess
 import time
 import urllib.error
 import urllib.parse
 import urllib.request
-from typing import Any, Dict, List, Optional, Tuple
+from pathlib import Path
+from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 from tornado.httpclient import HTTPRequest
 
+from course_testkit import isolation
+from course_testkit.waiting import wait_for
 from course_testkit.workbench import JupyterSession, WorkbenchError
 
 REQUEST_TIMEOUT_S = 30.0
 SPAWN_TIMEOUT_S = 300.0
+HUB_START_TIMEOUT_S = 120.0
+HUB_STOP_TIMEOUT_S = 180.0
+CHECKOUT = Path(__file__).resolve().parents[4]  # <checkout>/src/course_testkit/src/course_testkit/hub.py
+LOCAL_CONFIG = '''# LocalHub's additions to the course's config (course_testkit.hub)
+c = get_config()  # noqa: F821
+load_subconfig(%(course)r)  # noqa: F821
+c.JupyterHub.hub_port = %(hub_port)d
+c.ConfigurableHTTPProxy.api_url = "http://127.0.0.1:%(proxy_api_port)d"
+c.JupyterHub.services = [{"name": "idle-culler", "api_token": %(culler_token)r}]
+'''
 
 
 class SpawnFailed(WorkbenchError):
@@ -179,3 +203,74 @@ def _text(raw: bytes) -> str:
     text = raw.decode(errors="replace")
     message = re.search(r"<p[^>]*class=\"[^\"]*error[^\"]*\"[^>]*>(.*?)</p>", text, re.S)
     return (message.group(1).strip() if message else re.sub(r"\s+", " ", re.sub(r"<[^>]+>", " ", text)))[:500]
+
+
+class LocalHub:
+    """`make hub` on scratch folders and free ports (see the module docstring)."""
+
+    def __init__(self, image: str, work: Path, students: Sequence[str], tas: Sequence[str] = (),
+                 extra_config: str = "") -> None:
+        self.work = Path(work)
+        self.data = self.work / "data"
+        self.port = isolation.free_port()
+        self.url = "http://127.0.0.1:%d" % self.port
+        self.culler_token = secrets.token_hex(24)
+        self.class_list = self.work / "classlist.csv"
+        with open(self.class_list, "w", newline="") as out:
+            writer = csv.writer(out)
+            writer.writerow(["username", "role"])
+            writer.writerows([[name, "ta"] for name in tas] + [[name, "student"] for name in students])
+        self.config = self.work / "local_hub_config.py"
+        self.config.write_text(LOCAL_CONFIG % {
+            "course": str(CHECKOUT / "deploy" / "jupyterhub" / "jupyterhub_config.py"),
+            "hub_port": isolation.free_port(), "proxy_api_port": isolation.free_port(),
+            "culler_token": self.culler_token} + extra_config)
+        self.env = dict(os.environ, HUB_DATA=str(self.data), HUB_CLASS_LIST=str(self.class_list), HUB_IMAGE=image,
+                        HUB_URL=self.url)
+        self.env.pop("DOCKER_HOST", None)
+        self.socket = "/run/ros-course-hub-local-%d/podman.sock" % os.getpid()
+        self.log = self.work / "hub.log"
+        self.proc: Optional[subprocess.Popen] = None
+
+    def start(self) -> str:
+        with open(self.log, "ab") as out:
+            self.proc = subprocess.Popen(
+                ["/usr/bin/python3", str(CHECKOUT / "src" / "course_hub" / "scripts" / "hub"), "--config",
+                 str(self.config), "--jupyterhub", str(CHECKOUT / ".venv-hub" / "bin" / "jupyterhub"),
+                 "--socket", self.socket],
+                env=self.env, stdout=out, stderr=subprocess.STDOUT, start_new_session=True, cwd=str(self.work))
+        proc = self.proc
+        if not wait_for(lambda: proc.poll() is not None or self.answers(), HUB_START_TIMEOUT_S, 0.2) or \
+                proc.poll() is not None:
+            raise WorkbenchError("the hub did not answer at %s; its log ends:\n%s" % (self.url, self.tail()))
+        return "%s answers (podman's Docker API on %s)" % (self.url, self.socket)
+
+    def answers(self) -> bool:
+        try:
+            with urllib.request.urlopen(self.url + "/hub/api/", timeout=5) as reply:
+                return reply.status == 200
+        except OSError:
+            return False
+
+    def tail(self, chars: int = 3000) -> str:
+        try:
+            return self.log.read_text(errors="replace")[-chars:]
+        except OSError:
+            return ""
+
+    def stop(self) -> None:
+        """The hub stops every server (their containers removed), then podman's API."""
+        if self.proc is not None and self.proc.poll() is None:
+            os.killpg(self.proc.pid, signal.SIGTERM)
+            try:
+                self.proc.wait(HUB_STOP_TIMEOUT_S)
+            except subprocess.TimeoutExpired:
+                os.killpg(self.proc.pid, signal.SIGKILL)
+                self.proc.wait()
+
+    def __enter__(self) -> "LocalHub":
+        self.start()
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        self.stop()

@@ -58,7 +58,7 @@ from course_testkit.waiting import wait_for  # noqa: E402
 STUDENTS = ("alice", "bob", "carol")
 FAILING = "dave"        # a student whose server cannot start (a memory limit too small)
 TA = "tom"
-TOO_LITTLE_MEMORY = "48M"
+TOO_LITTLE_MEMORY = "24M"
 MILESTONE = "chatter"
 SAMPLES = ROOT / "tests" / "submissions"
 FILES = {"alice": SAMPLES / "lab2_chatter_scripts" / "lab2" / "src" / "chatter",
@@ -297,6 +297,8 @@ def run(opts: argparse.Namespace) -> int:
             assert gone, "still running: %s" % [n for n in STUDENTS if users[n].server_state()]
             assert not podman_out("ps", "-q", "--filter", "name=course-hub-alice"), "alice's container is still there"
             seconds = users["alice"].start()
+            status, url = users["alice"].open_server()  # a new server: the hub's OAuth again
+            assert status == 200 and "/user/alice/lab" in url, (status, url)
             status, data, _ = users["alice"].request("GET", "/api/contents/catkin_ws/src/chatter/package.xml")
             assert status == 200 and b"chatter" in data, (status, data[:300])
             with users["alice"].terminal() as term:

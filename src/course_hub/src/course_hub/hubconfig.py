@@ -128,6 +128,17 @@ def make_hooks(settings: HubSettings):
     return pre_spawn, post_stop
 
 
+def exit_reason(state: Dict[str, Any], mem_limit: Optional[str]) -> str:
+    """A sentence for a student, from a stopped container's State (Docker's inspect)."""
+    code = state.get("ExitCode")
+    if state.get("OOMKilled") or code == 137 and mem_limit:
+        return ("your server ran out of memory (the course's limit is %s) and was stopped: tell your TA; "
+                "your files are safe" % (mem_limit or "set"))
+    if state.get("Error"):
+        return "your server could not start: %s" % state["Error"]
+    return "your server's start-up ended with exit code %s; your files are safe, ask your TA" % code
+
+
 def culler_service(settings: HubSettings, python: Optional[str] = None) -> Dict[str, Any]:
     return {"name": CULLER_SERVICE,
             "command": [python or sys.executable, "-m", "jupyterhub_idle_culler",
@@ -143,6 +154,7 @@ def apply(c: Any, settings: HubSettings) -> classlist.ClassList:
     data = settings.data_dir
     os.makedirs(data, mode=0o700, exist_ok=True)
 
+    os.chmod(data, 0o711)  # the grader's sandbox user passes through to the grades (secrets are 0600)
     c.JupyterHub.bind_url = settings.bind_url
     c.JupyterHub.hub_ip = "0.0.0.0"  # the containers call it through their networks' gateways
     c.JupyterHub.hub_port = settings.hub_port
@@ -158,7 +170,7 @@ def apply(c: Any, settings: HubSettings) -> classlist.ClassList:
     c.Authenticator.allowed_users = set(users.users)
     c.Authenticator.admin_users = set(users.admins)
 
-    c.JupyterHub.spawner_class = "dockerspawner.DockerSpawner"
+    c.JupyterHub.spawner_class = "course_hub.spawner.CourseSpawner"  # DockerSpawner, saying why a server stopped
     c.DockerSpawner.image = settings.image
     c.DockerSpawner.pull_policy = "never"  # no registry: the image is built on this machine
     c.DockerSpawner.cmd = ["make", "jupyter"]
@@ -169,7 +181,9 @@ def apply(c: Any, settings: HubSettings) -> classlist.ClassList:
     c.DockerSpawner.read_only_volumes = {user_folders(data, "{username}")["grades"]: GRADES_IN_CONTAINER}
     c.DockerSpawner.mem_limit = settings.mem_limit
     c.DockerSpawner.cpu_limit = settings.cpu_limit
-    c.DockerSpawner.extra_host_config = {"pids_limit": settings.pids_limit}
+    # auto_remove off: a container that exits stays until the server is stopped, so that the
+    # spawner can say why it exited (course_hub.spawner); DockerSpawner removes it then (remove=True)
+    c.DockerSpawner.extra_host_config = {"pids_limit": settings.pids_limit, "auto_remove": False}
     pre_spawn, post_stop = make_hooks(settings)
     c.DockerSpawner.pre_spawn_hook = pre_spawn
     c.DockerSpawner.post_stop_hook = post_stop

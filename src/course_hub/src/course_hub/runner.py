@@ -23,7 +23,7 @@ from typing import Dict, List, Mapping, Optional, Sequence
 
 PODMAN = ["podman", "--runtime", "runc", "--cgroup-manager=cgroupfs"]
 DEFAULT_SOCKET = "/run/ros-course-hub/podman.sock"
-SOCKET_TIMEOUT_S = 30.0
+SOCKET_TIMEOUT_S = 120.0  # podman takes seconds to start, minutes on a loaded machine
 STOP_TIMEOUT_S = 60.0
 
 
@@ -54,8 +54,11 @@ def start_engine(path: str) -> subprocess.Popen:
     deadline = time.monotonic() + SOCKET_TIMEOUT_S
     while not answers(path):
         if proc.poll() is not None or time.monotonic() > deadline:
+            ended = proc.poll()
             stop(proc)
-            raise RuntimeError("podman's Docker API did not come up on %s (%s)" % (path, " ".join(engine_command(path))))
+            raise RuntimeError("podman's Docker API did not come up on %s within %.0f s (%s)%s" % (
+                path, SOCKET_TIMEOUT_S, " ".join(engine_command(path)),
+                "" if ended is None else ": podman ended with exit code %d" % ended))
         time.sleep(0.1)
     return proc
 

@@ -45,7 +45,8 @@ def test_accounts_come_from_the_class_list_and_tas_are_admins(tmp_path):
 def test_each_student_a_container_with_limits_their_src_kept_and_grades_read_only(tmp_path):
     c, _, _ = applied(tmp_path)
     spawner = c.DockerSpawner
-    assert c.JupyterHub.spawner_class == "dockerspawner.DockerSpawner"
+    assert c.JupyterHub.spawner_class == "course_hub.spawner.CourseSpawner"
+    assert spawner.extra_host_config["auto_remove"] is False  # the spawner asks a stopped container why
     assert (spawner.image, spawner.pull_policy, spawner.remove) == ("img:1", "never", True)
     assert (spawner.mem_limit, spawner.cpu_limit) == ("1G", 0.5)
     assert spawner.extra_host_config["pids_limit"] > 0
@@ -105,3 +106,10 @@ def test_the_image_carries_jupyterhub_at_the_hubs_version():
         text = open(os.path.join(CHECKOUT, path)).read()
         return re.search(r"^jupyterhub==(\S+)", text, re.M).group(1)
     assert pin("requirements-jupyter.txt") == pin("requirements-hub.txt")
+
+
+def test_a_stopped_server_is_explained_in_words():
+    oom = hubconfig.exit_reason({"ExitCode": 137, "OOMKilled": True}, "24M")
+    assert "ran out of memory" in oom and "24M" in oom and "files are safe" in oom
+    assert "exit code 2" in hubconfig.exit_reason({"ExitCode": 2, "OOMKilled": False}, "2G")
+    assert "could not start: no such file" in hubconfig.exit_reason({"ExitCode": 127, "Error": "no such file"}, "2G")

@@ -45,7 +45,7 @@ from course_testkit.workbench import JupyterSession, WorkbenchError
 
 REQUEST_TIMEOUT_S = 30.0
 SPAWN_TIMEOUT_S = 300.0
-HUB_START_TIMEOUT_S = 120.0
+HUB_START_TIMEOUT_S = 240.0
 HUB_STOP_TIMEOUT_S = 180.0
 CHECKOUT = Path(__file__).resolve().parents[4]  # <checkout>/src/course_testkit/src/course_testkit/hub.py
 LOCAL_CONFIG = '''# LocalHub's additions to the course's config (course_testkit.hub)
@@ -168,8 +168,16 @@ class HubUser(JupyterSession):
         self.hub_api("DELETE", "/users/%s/server" % self.name)
 
     def open_server(self, owner: Optional[str] = None) -> Tuple[int, str]:
-        """GET /user/<owner>/lab as a browser: (status, final URL) after the hub's OAuth redirects."""
-        status, _, url = self.http("GET", "/user/%s/lab" % (owner or self.name))
+        """GET /user/<owner>/lab as a browser: (status, final URL) after the hub's OAuth redirects.
+        Opening another's server (an admin), the hub first asks to authorize the access: the form
+        is sent as its Authorize button sends it."""
+        status, page, url = self.http("GET", "/user/%s/lab" % (owner or self.name))
+        parsed = urllib.parse.urlparse(url)
+        if status == 200 and parsed.path == "/hub/api/oauth2/authorize" and b'<form method="post"' in page:
+            fields = re.findall(rb'<input type="hidden" name="([^"]+)" value="([^"]*)"', page)
+            form = urllib.parse.urlencode([(k.decode(), v.decode()) for k, v in fields]).encode()
+            status, page, url = self.http("POST", "%s?%s" % (parsed.path, parsed.query), form,
+                                          {"Content-Type": "application/x-www-form-urlencoded"})
         return status, url
 
     def as_session(self, owner: str) -> "HubUser":

@@ -58,7 +58,7 @@ from course_testkit.waiting import wait_for  # noqa: E402
 STUDENTS = ("alice", "bob", "carol")
 FAILING = "dave"        # a student whose server cannot start (a memory limit too small)
 TA = "tom"
-TOO_LITTLE_MEMORY = "24M"
+TOO_LITTLE_MEMORY = "8M"  # JupyterLab cannot answer in it (24M sometimes did, then died)
 MILESTONE = "chatter"
 SAMPLES = ROOT / "tests" / "submissions"
 FILES = {"alice": SAMPLES / "lab2_chatter_scripts" / "lab2" / "src" / "chatter",
@@ -264,6 +264,7 @@ def run(opts: argparse.Namespace) -> int:
                 message = str(err)
             else:
                 raise AssertionError("dave's server started with %s of memory" % TOO_LITTLE_MEMORY)
+            assert "memory" in message and TOO_LITTLE_MEMORY in message, "not clear: %s" % message
             assert users["alice"].request("GET", "/api/status")[0] == 200, "alice's server stopped answering"
             code, said = terms["bob"].run("pgrep -f turtlesim_node")
             assert code == 0, "bob's turtlesim is gone"

@@ -12,11 +12,15 @@ calls `apply(c, settings)`. What it sets up, and why:
   API: podman's `system service` here), running `make jupyter`, which becomes
   `jupyterhub-singleuser` under a hub (course_workbench.startup). The container is removed when the
   server stops; the student's files are not in it.
-- **A network of their own:** before the spawn, a bridge network `course-hub-net-<user>` with
-  podman's `isolate` option (no route to any other such network: A's container cannot open a
-  connection to B's, whatever port B's processes listen on). The hub reaches the container on its
-  network's address; the container reaches the hub through its network's gateway (the hub's API
-  listens on every address of the host, `hub_ip` 0.0.0.0, and answers only with a token).
+- **A network of their own:** before the spawn, an *internal* bridge network
+  `course-hub-net-<user>`: the container has an address on it and no route anywhere else, so A's
+  container cannot open a connection to B's, whatever port B's processes listen on (and cannot
+  reach the internet: the course needs none). The hub's host reaches the container on its
+  network's address; the container reaches the hub's API on its network's gateway (the host's
+  own address on that bridge; the API listens on every address, `hub_ip` 0.0.0.0, and answers only
+  with a token). podman's `isolate` option was the first choice, but netavark 1.4 (Debian 12)
+  drops the firewall's jump to its isolation rules whenever any isolated network's container
+  stops, which left the other students' networks open (seen here, docs/hub.md).
 - **Files:** `<data>/users/<user>/src` is the container's `~/catkin_ws/src` (persistent: it stays
   when the server stops, is culled or the image changes), and `<data>/users/<user>/grades` its
   `~/grades`, read-only: the reports grading from the hub copies there (course_hub.grading).
@@ -39,7 +43,6 @@ from urllib.parse import urlparse
 from course_hub import classlist
 
 NAME_PREFIX = "course-hub-"            # containers course-hub-<user>, networks course-hub-net-<user>
-NETWORK_OPTIONS = {"isolate": "true"}  # podman (netavark): no route between two such networks
 STUDENT_HOME = "/home/student"         # the student image's user (docker/Dockerfile)
 SRC_IN_CONTAINER = STUDENT_HOME + "/catkin_ws/src"
 GRADES_IN_CONTAINER = STUDENT_HOME + "/grades"
@@ -92,8 +95,8 @@ def ensure_network(client: Any, user: str) -> str:
     name = network_name(user)
     found = [n for n in client.networks(names=[name]) if n.get("Name") == name]
     if not found:
-        client.create_network(name, driver="bridge", options=dict(NETWORK_OPTIONS),
-                              labels={"course-hub.user": user})
+        # internal: no route off the bridge (no default route in the container, no NAT)
+        client.create_network(name, driver="bridge", internal=True, labels={"course-hub.user": user})
     info = client.inspect_network(name)
     for config in (info.get("IPAM") or {}).get("Config") or []:
         if config.get("Gateway"):

@@ -74,8 +74,8 @@ class FakeEngine:
     def networks(self, names):
         return [{"Name": n} for n in names if n in self.made]
 
-    def create_network(self, name, driver, options, labels):
-        self.made[name] = options
+    def create_network(self, name, driver, internal, labels):
+        self.made[name] = {"driver": driver, "internal": internal}
 
     def inspect_network(self, name):
         return {"IPAM": {"Config": [{"Subnet": "10.89.7.0/24", "Gateway": "10.89.7.1"}]}}
@@ -84,7 +84,7 @@ class FakeEngine:
         del self.made[name]
 
 
-def test_before_a_spawn_the_user_gets_folders_and_an_isolated_network_the_hub_is_reached_through(tmp_path, monkeypatch):
+def test_before_a_spawn_the_user_gets_folders_and_an_internal_network_the_hub_is_reached_through(tmp_path, monkeypatch):
     monkeypatch.setattr(os, "chown", lambda *args: None)
     settings = hubconfig.HubSettings(class_list="", data_dir=str(tmp_path))
     pre_spawn, post_stop = hubconfig.make_hooks(settings)
@@ -93,7 +93,7 @@ def test_before_a_spawn_the_user_gets_folders_and_an_isolated_network_the_hub_is
                                     hub=types.SimpleNamespace(api_url="http://127.0.0.1:8123/hub/api"))
     asyncio.run(pre_spawn(spawner))
     assert spawner.network_name == "course-hub-net-alice"
-    assert engine.made == {"course-hub-net-alice": {"isolate": "true"}}
+    assert engine.made == {"course-hub-net-alice": {"driver": "bridge", "internal": True}}
     assert spawner.hub_connect_url == "http://10.89.7.1:8123"
     assert os.path.isdir(tmp_path / "users" / "alice" / "src") and os.path.isdir(tmp_path / "users" / "alice" / "grades")
     asyncio.run(pre_spawn(spawner))  # again: the same network, nothing made twice

@@ -47,6 +47,10 @@ STUDENT_HOME = "/home/student"         # the student image's user (docker/Docker
 SRC_IN_CONTAINER = STUDENT_HOME + "/catkin_ws/src"
 GRADES_IN_CONTAINER = STUDENT_HOME + "/grades"
 CULLER_SERVICE = "idle-culler"
+# What `make jupyter` runs, exec'd down to the server itself (bash, rosrun, the start-up, then
+# jupyterhub-singleuser): the server is the container's main process, so the container ends with
+# the server's own exit status (137 when the memory limit killed it) and not make's 2.
+SINGLEUSER_COMMAND = ("bash", "-c", "source catkin_ws/devel/setup.bash && exec rosrun course_workbench workbench")
 
 
 @dataclass
@@ -176,7 +180,7 @@ def apply(c: Any, settings: HubSettings) -> classlist.ClassList:
     c.JupyterHub.spawner_class = "course_hub.spawner.CourseSpawner"  # DockerSpawner, saying why a server stopped
     c.DockerSpawner.image = settings.image
     c.DockerSpawner.pull_policy = "never"  # no registry: the image is built on this machine
-    c.DockerSpawner.cmd = ["make", "jupyter"]
+    c.DockerSpawner.cmd = list(SINGLEUSER_COMMAND)
     c.DockerSpawner.name_template = NAME_PREFIX + "{username}"
     c.DockerSpawner.remove = True
     c.DockerSpawner.use_internal_ip = True

@@ -53,7 +53,7 @@ def test_each_student_a_container_with_limits_their_src_kept_and_grades_read_onl
     data = str(tmp_path / "data")
     assert spawner.volumes == {data + "/users/{username}/src": "/home/student/catkin_ws/src"}
     assert spawner.read_only_volumes == {data + "/users/{username}/grades": "/home/student/grades"}
-    assert spawner.cmd == ["make", "jupyter"]
+    assert spawner.cmd[-1].endswith("exec rosrun course_workbench workbench")
 
 
 def test_idle_servers_are_culled_by_a_service_with_only_the_scopes_it_needs(tmp_path):

@@ -147,14 +147,15 @@ def rates(students: List[Student], window: float) -> List[Tuple[float, float]]:
     return [r for r in results if r is not None]
 
 
-def memory_mib() -> Dict[str, float]:
-    out = subprocess.run(PODMAN + ["stats", "--no-stream", "--format", "{{.Name}} {{.MemUsage}}"],
+def container_stats() -> Dict[str, Tuple[float, float]]:
+    """{container: (memory MiB, CPU % of one core)} of the students' containers (podman stats)."""
+    out = subprocess.run(PODMAN + ["stats", "--no-stream", "--format", "{{.Name}} {{.MemUsage}} {{.CPUPerc}}"],
                          stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True, check=False).stdout
     found = {}
     for line in out.splitlines():
         parts = line.split()
         if parts and parts[0].startswith("course-hub-"):
-            found[parts[0]] = _mib(parts[1])
+            found[parts[0]] = (_mib(parts[1]), float(parts[-1].rstrip("%") or 0))
     return found
 
 
@@ -207,7 +208,9 @@ def main() -> int:
                           flush=True)
             n = len(students)
             measured = rates(students, opts.window)
-            memory = memory_mib()
+            stats = container_stats()
+            memory = {name: mib for name, (mib, _) in stats.items()}
+            cpu = statistics.mean(pct for _, pct in stats.values()) if stats else float("nan")
             hub_home = latency(students[0].user, "/hub/home")
             server = latency(students[-1].user, "/user/%s/api/status" % students[-1].user.name)
             slowest = min(r for r, _ in measured)
@@ -217,11 +220,12 @@ def main() -> int:
             if ok:
                 best = n
             row = ("N=%2d  pose rate slowest %.1f Hz (longest gap %.0f ms)  memory/student %.0f MiB (total %.0f)  "
+                   "CPU/student %.0f%%  "
                    "/hub/home median %.0f ms worst %.0f ms  server API median %.0f ms worst %.0f ms  spawn %.1f s  "
-                   "load %s  %s" % (n, slowest, gap, per_student, sum(memory.values()), 1000 * hub_home[0],
+                   "load %s  %s" % (n, slowest, gap, per_student, sum(memory.values()), cpu, 1000 * hub_home[0],
                                     1000 * hub_home[1], 1000 * server[0], 1000 * server[1], students[-1].spawn_s,
                                     load(), "ok" if ok else "OVER"))
-            rows.append((n, per_student, slowest, ok))
+            rows.append((n, per_student, slowest, ok, cpu))
             print(row, flush=True)
             if not ok:
                 break
@@ -229,13 +233,13 @@ def main() -> int:
               "2 cores shared with other work; load average %s)" % (MIN_RATE_HZ, MAX_LATENCY_S, best, load()))
         if rows:
             per_student = max(r[1] for r in rows)
-            cores_per_student = 2.0 / max(best, 1)
-            print("hub_bench: a class of %d under Kubernetes, from these figures: memory %.0f MiB a student "
-                  "(guarantee), %.2f cores a student at most (2 cores / %d students): %.0f GiB and %.0f cores "
-                  "if all are on at once; e.g. %d nodes of 8 cores / 32 GiB"
-                  % (CLASS, per_student, cores_per_student, max(best, 1), CLASS * per_student / 1024,
-                     CLASS * cores_per_student, math.ceil(max(CLASS * cores_per_student / 8,
-                                                              CLASS * per_student / 1024 / 28))))
+            cores_per_student = max(r[4] for r in rows) / 100.0
+            need_cores, need_gib = CLASS * cores_per_student, CLASS * per_student / 1024
+            print("hub_bench: a class of %d under Kubernetes, from these figures: %.0f MiB and %.2f cores a student "
+                  "(the most measured at any N) -> %.0f GiB and %.0f cores with everyone on at once; nodes of "
+                  "8 cores / 32 GiB (28 GiB for pods): %d" % (
+                      CLASS, per_student, cores_per_student, need_gib, need_cores,
+                      math.ceil(max(need_cores / 8, need_gib / 28))))
     finally:
         for student in students:
             try:

@@ -264,7 +264,7 @@ def run(opts: argparse.Namespace) -> int:
                 message = str(err)
             else:
                 raise AssertionError("dave's server started with %s of memory" % TOO_LITTLE_MEMORY)
-            assert "memory" in message and TOO_LITTLE_MEMORY in message, "not clear: %s" % message
+            assert "ran out of memory" in message and TOO_LITTLE_MEMORY in message, "not clear: %s" % message
             assert users["alice"].request("GET", "/api/status")[0] == 200, "alice's server stopped answering"
             code, said = terms["bob"].run("pgrep -f turtlesim_node")
             assert code == 0, "bob's turtlesim is gone"

@@ -140,10 +140,22 @@ def exit_reason(state: Dict[str, Any], mem_limit: Optional[str]) -> str:
     code = state.get("ExitCode")
     if state.get("OOMKilled") or code == 137 and mem_limit:
         return ("your server ran out of memory (the course's limit is %s) and was stopped: tell your TA; "
-                "your files are safe" % (mem_limit or "set"))
+                "your files are safe" % _bytes(mem_limit))
     if state.get("Error"):
         return "your server could not start: %s" % state["Error"]
     return "your server's start-up ended with exit code %s; your files are safe, ask your TA" % code
+
+
+def _bytes(value: Optional[str]) -> str:
+    """A memory size as people write it: 8388608 -> 8M; a size already written so stays."""
+    text = str(value or "?")
+    if not text.isdigit():
+        return text
+    number = int(text)
+    for unit, size in (("G", 2 ** 30), ("M", 2 ** 20), ("K", 2 ** 10)):
+        if number >= size and number % size == 0:
+            return "%d%s" % (number // size, unit)
+    return text
 
 
 def culler_service(settings: HubSettings, python: Optional[str] = None) -> Dict[str, Any]:

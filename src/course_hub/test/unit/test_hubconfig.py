@@ -111,5 +111,6 @@ def test_the_image_carries_jupyterhub_at_the_hubs_version():
 def test_a_stopped_server_is_explained_in_words():
     oom = hubconfig.exit_reason({"ExitCode": 137, "OOMKilled": True}, "24M")
     assert "ran out of memory" in oom and "24M" in oom and "files are safe" in oom
+    assert "limit is 8M" in hubconfig.exit_reason({"ExitCode": 137, "OOMKilled": False}, "8388608")
     assert "exit code 2" in hubconfig.exit_reason({"ExitCode": 2, "OOMKilled": False}, "2G")
     assert "could not start: no such file" in hubconfig.exit_reason({"ExitCode": 127, "Error": "no such file"}, "2G")

@@ -139,7 +139,9 @@ class HubUser(JupyterSession):
         with the hub's message when it failed."""
         began = time.monotonic()
         status, answer = self.hub_api("POST", "/users/%s/server" % self.name)
-        if status not in (201, 202, 400):  # 400: already running
+        # 400: already running; 500: the spawn failed at once (its reason is in the progress
+        # events, which the hub's spawn page shows)
+        if status not in (201, 202, 400, 500):
             raise WorkbenchError("starting %s's server -> %d: %s" % (self.name, status, answer))
         self.last_progress = self.progress(timeout)
         final = self.last_progress[-1] if self.last_progress else {}

@@ -110,6 +110,9 @@ class Student:
         self.user = HubUser(hub.url, name, "pw-" + name + "-bench")
         self.user.login()
         self.spawn_s = self.user.start()
+        status, url = self.user.open_server()  # JupyterLab's page: the hub's OAuth, the server's cookies
+        if status != 200:
+            raise RuntimeError("%s's JupyterLab -> %d (%s)" % (name, status, url))
         self.term = self.user.terminal()
         self.user.write_file("pose_rate.py", POSE_RATE)
         code, said = self.term.run("(roscore > ~/roscore.log 2>&1 &) ; until rostopic list > /dev/null 2>&1; do "

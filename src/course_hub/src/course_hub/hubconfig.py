@@ -83,14 +83,16 @@ def user_folders(data_dir: str, user: str) -> Dict[str, str]:
 
 
 def ensure_user_folders(data_dir: str, user: str, uid: int) -> Dict[str, str]:
-    """Create `user`'s folders if missing: src writable by the image's student (uid), grades
-    readable by them and writable by the hub (root) only."""
+    """Create `user`'s folders if missing: src owned by the image's student (uid), grades readable
+    by them and writable by the hub (root) only. Modes are set explicitly: the hub runs with
+    umask 077 (course_hub.runner)."""
     folders = user_folders(data_dir, user)
-    os.makedirs(os.path.dirname(folders["src"]), mode=0o755, exist_ok=True)
     if not os.path.isdir(folders["src"]):
-        os.makedirs(folders["src"], mode=0o755)
+        os.makedirs(folders["src"])
         os.chown(folders["src"], uid, uid)
-    os.makedirs(folders["grades"], mode=0o755, exist_ok=True)
+        os.chmod(folders["src"], 0o755)
+    os.makedirs(folders["grades"], exist_ok=True)
+    os.chmod(folders["grades"], 0o755)
     return folders
 
 

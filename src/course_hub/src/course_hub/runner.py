@@ -107,8 +107,10 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             return 2
         docker_host = "unix://" + args.socket
         print("hub: podman's Docker API on %s" % docker_host, flush=True)
+    # umask 077: the hub's database, proxy pid file and the students' folders are nobody else's
+    # (hubconfig sets the modes that must be wider explicitly)
     hub = subprocess.Popen([args.jupyterhub, "-f", os.path.abspath(args.config)],
-                           env=hub_env(os.environ, docker_host), start_new_session=True)
+                           env=hub_env(os.environ, docker_host), start_new_session=True, umask=0o077)
 
     def forward(signum: int, _frame: object) -> None:
         if hub.poll() is None:

@@ -95,7 +95,8 @@ def test_before_a_spawn_the_user_gets_folders_and_an_internal_network_the_hub_is
     assert spawner.network_name == "course-hub-net-alice"
     assert engine.made == {"course-hub-net-alice": {"driver": "bridge", "internal": True}}
     assert spawner.hub_connect_url == "http://10.89.7.1:8123"
-    assert os.path.isdir(tmp_path / "users" / "alice" / "src") and os.path.isdir(tmp_path / "users" / "alice" / "grades")
+    assert os.path.isdir(tmp_path / "users" / "alice" / "src")
+    assert os.stat(tmp_path / "users" / "alice" / "grades").st_mode & 0o777 == 0o755
     asyncio.run(pre_spawn(spawner))  # again: the same network, nothing made twice
     asyncio.run(post_stop(spawner))
     assert engine.made == {}

@@ -11,6 +11,8 @@ all the time; /api/graph every 2 s as the graph panel does). At each N:
   a subscriber in their own container (rospy, in a terminal); the slowest student's rate, and the
   longest gap between two poses;
 - memory: each container's memory use (podman stats), the mean per student;
+- the lab pages' messages per second (the canvas frames and /rosout lines each page received
+  during the count: the slowest page), to show the pages were live;
 - the hub's page latency: GET /hub/home and GET /user/<name>/api/status (through the proxy), 20
   of each, median and worst;
 - the machine's load average.
@@ -210,7 +212,10 @@ def main() -> int:
                     print("hub_bench: spawn of one server (nothing else running): %.1f s" % students[0].spawn_s,
                           flush=True)
             n = len(students)
+            frames_before = [s.page.frames for s in students]
+            began = time.monotonic()
             measured = rates(students, opts.window)
+            page_rates = [(s.page.frames - f) / (time.monotonic() - began) for s, f in zip(students, frames_before)]
             stats = container_stats()
             memory = {name: mib for name, (mib, _) in stats.items()}
             cpu = statistics.mean(pct for _, pct in stats.values()) if stats else float("nan")
@@ -223,11 +228,11 @@ def main() -> int:
             if ok:
                 best = n
             row = ("N=%2d  pose rate slowest %.1f Hz (longest gap %.0f ms)  memory/student %.0f MiB (total %.0f)  "
-                   "CPU/student %.0f%%  "
+                   "CPU/student %.0f%%  page messages/s slowest %.0f  "
                    "/hub/home median %.0f ms worst %.0f ms  server API median %.0f ms worst %.0f ms  spawn %.1f s  "
-                   "load %s  %s" % (n, slowest, gap, per_student, sum(memory.values()), cpu, 1000 * hub_home[0],
-                                    1000 * hub_home[1], 1000 * server[0], 1000 * server[1], students[-1].spawn_s,
-                                    load(), "ok" if ok else "OVER"))
+                   "load %s  %s" % (n, slowest, gap, per_student, sum(memory.values()), cpu, min(page_rates),
+                                    1000 * hub_home[0], 1000 * hub_home[1], 1000 * server[0], 1000 * server[1],
+                                    students[-1].spawn_s, load(), "ok" if ok else "OVER"))
             rows.append((n, per_student, slowest, ok, cpu))
             print(row, flush=True)
             if not ok:

@@ -11,6 +11,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 CHECKOUT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(CHECKOUT, "src", "course_hub", "src"))
+sys.path.insert(0, HERE)  # course_spawner, the spawner hubconfig names
 from course_hub import hubconfig  # noqa: E402
 
 c = get_config()  # noqa: F821 (JupyterHub's)

@@ -191,7 +191,8 @@ def apply(c: Any, settings: HubSettings) -> classlist.ClassList:
     c.Authenticator.allowed_users = set(users.users)
     c.Authenticator.admin_users = set(users.admins)
 
-    c.JupyterHub.spawner_class = "course_hub.spawner.CourseSpawner"  # DockerSpawner, saying why a server stopped
+    # DockerSpawner, saying why a server stopped (deploy/jupyterhub/course_spawner.py, on the hub's path)
+    c.JupyterHub.spawner_class = "course_spawner.CourseSpawner"
     c.DockerSpawner.image = settings.image
     c.DockerSpawner.pull_policy = "never"  # no registry: the image is built on this machine
     c.DockerSpawner.cmd = list(SINGLEUSER_COMMAND)
@@ -203,7 +204,7 @@ def apply(c: Any, settings: HubSettings) -> classlist.ClassList:
     c.DockerSpawner.mem_limit = settings.mem_limit
     c.DockerSpawner.cpu_limit = settings.cpu_limit
     # auto_remove off: a container that exits stays until the server is stopped, so that the
-    # spawner can say why it exited (course_hub.spawner); DockerSpawner removes it then (remove=True)
+    # spawner can say why it exited (course_spawner); DockerSpawner removes it then (remove=True)
     c.DockerSpawner.extra_host_config = {"pids_limit": settings.pids_limit, "auto_remove": False}
     pre_spawn, post_stop = make_hooks(settings)
     c.DockerSpawner.pre_spawn_hook = pre_spawn

@@ -45,7 +45,7 @@ def test_accounts_come_from_the_class_list_and_tas_are_admins(tmp_path):
 def test_each_student_a_container_with_limits_their_src_kept_and_grades_read_only(tmp_path):
     c, _, _ = applied(tmp_path)
     spawner = c.DockerSpawner
-    assert c.JupyterHub.spawner_class == "course_hub.spawner.CourseSpawner"
+    assert c.JupyterHub.spawner_class == "course_spawner.CourseSpawner"
     assert spawner.extra_host_config["auto_remove"] is False  # the spawner asks a stopped container why
     assert (spawner.image, spawner.pull_policy, spawner.remove) == ("img:1", "never", True)
     assert (spawner.mem_limit, spawner.cpu_limit) == ("1G", 0.5)

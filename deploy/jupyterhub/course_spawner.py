@@ -1,5 +1,9 @@
 """The course's spawner: DockerSpawner, saying in words why a student's server stopped.
 
+It lives beside the hub's config, not in a catkin package: it runs in the hub's own venv
+(.venv-hub, requirements-hub.txt), where dockerspawner is; the config puts this folder and
+course_hub's on the hub's path.
+
 DockerSpawner's poll reports a stopped container as `ExitCode=137, Error='', FinishedAt=...`, and
 JupyterHub shows that string to the student whose server failed to start. This one says what
 happened (course_hub.hubconfig.exit_reason): out of memory under the course's limit, or the

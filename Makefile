@@ -12,7 +12,7 @@ HAVE_SOLUTIONS := $(wildcard $(ROOT)/solutions/*/package.xml)
 ROSENV := source $(WS)/devel/setup.bash &&
 REFENV := source $(if $(HAVE_SOLUTIONS),$(SOLUTIONS_WS),$(WS))/devel/setup.bash &&
 
-.PHONY: deps build demo lab jupyter test flake-hunt unit rostest grade autograder bench bench-grade docker-check autograder-check clean
+.PHONY: deps build demo lab jupyter hub hub-grade hub-check test flake-hunt unit rostest grade autograder bench bench-grade docker-check autograder-check clean
 
 deps:
 	@bash $(ROOT)/tools/deps.sh
@@ -68,6 +68,32 @@ jupyter:
 	  && [ -x $(ROOT)/.venv-jupyter/bin/jupyter-lab ] || $(MAKE) --no-print-directory build
 	@$(ROSENV) rosrun course_workbench workbench --address $(JUPYTER_ADDRESS) --port '$(JUPYTER_PORT)' \
 	  --url-host '$(JUPYTER_URL_HOST)'
+
+# The class's hub (docs/hub.md): JupyterHub at $(HUB_URL), each student a container of $(HUB_IMAGE)
+# (the student image) through podman's Docker API, accounts from $(HUB_CLASS_LIST), students' files in
+# $(HUB_DATA)/users/. Root. Its config: deploy/jupyterhub/jupyterhub_config.py.
+HUB_DATA ?= /var/lib/ros-course-hub
+HUB_CLASS_LIST ?= $(ROOT)/deploy/jupyterhub/classlist.csv
+HUB_IMAGE ?= localhost/ros-course
+HUB_URL ?= http://127.0.0.1:8000
+HUB_ENV := HUB_DATA='$(HUB_DATA)' HUB_CLASS_LIST='$(abspath $(HUB_CLASS_LIST))' HUB_IMAGE='$(HUB_IMAGE)' HUB_URL='$(HUB_URL)'
+hub:
+	@COURSE_HUB=1 bash $(ROOT)/tools/deps.sh
+	@$(HUB_ENV) /usr/bin/python3 $(ROOT)/src/course_hub/scripts/hub --config $(ROOT)/deploy/jupyterhub/jupyterhub_config.py \
+	  --jupyterhub $(ROOT)/.venv-hub/bin/jupyterhub
+
+# At a deadline: every student's catkin_ws/src snapshotted read-only, graded as a class (the gradebook
+# keyed by hub user), each report copied into its student's ~/grades. MILESTONES="chatter ..." as for autograder.
+hub-grade: build
+	@$(ROSENV) rosrun course_hub hub_grade --data '$(HUB_DATA)' --class-list '$(abspath $(HUB_CLASS_LIST))' \
+	  $(foreach m,$(MILESTONES),--only $(m))
+
+# The hub end to end with real parts (root, podman; ~15 min): the image, a hub, three students logging in
+# over HTTP, isolation, the admin, culling, a failed start, snapshot-and-grade. Not in make test.
+# HUB_CHECK_ARGS="--image localhost/ros-course-hub --no-build" tries an image already built.
+hub-check: build
+	@COURSE_HUB=1 bash $(ROOT)/tools/deps.sh
+	@$(REFENV) cd $(ROOT) && python3 tools/hub_check.py $(HUB_CHECK_ARGS)
 
 # Gradescope autograder: setup.sh + run_autograder + this repository; MILESTONES="chatter ..." grades only those.
 autograder: build

@@ -54,3 +54,31 @@ venv "$root/.venv" "$root/requirements.txt" "the PyPI packages" --system-site-pa
 if [ "${COURSE_JUPYTER:-1}" != 0 ]; then
   venv "$root/.venv-jupyter" "$root/requirements-jupyter.txt" "JupyterLab"
 fi
+
+# The class's hub (make hub, docs/hub.md): podman and runc (the containers), node and npm (the proxy),
+# JupyterHub, DockerSpawner and the idle culler in a venv of their own (.venv-hub), and npm's
+# configurable-http-proxy in a local prefix (.hub/node, pinned in deploy/jupyterhub/package.json).
+if [ "${COURSE_HUB:-0}" = 1 ]; then
+  hub_missing=()
+  for pkg in podman runc; do
+    dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed" || hub_missing+=("$pkg")
+  done
+  # npm: Debian's nodejs and npm, unless a node that brings its own npm (nodesource's) is there
+  command -v npm >/dev/null || hub_missing+=(nodejs npm)
+  if [ "${#hub_missing[@]}" -gt 0 ]; then
+    echo "deps: installing the hub's Debian packages: ${hub_missing[*]}"
+    $sudo apt-get update
+    $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "${hub_missing[@]}"
+  fi
+  venv "$root/.venv-hub" "$root/requirements-hub.txt" "JupyterHub"
+  node_dir="$root/.hub/node"
+  if ! cmp -s "$root/deploy/jupyterhub/package.json" "$node_dir/package.json" \
+     || [ ! -x "$node_dir/node_modules/.bin/configurable-http-proxy" ]; then
+    echo "deps: installing configurable-http-proxy into $node_dir"
+    mkdir -p "$node_dir"
+    cp "$root/deploy/jupyterhub/package.json" "$node_dir/package.json"
+    (cd "$node_dir" && npm install --no-audit --no-fund --loglevel=error)
+  else
+    echo "deps: configurable-http-proxy up to date in $node_dir"
+  fi
+fi

@@ -1,9 +1,11 @@
 """A JupyterLab server driven as JupyterLab's own page drives it: Jupyter's REST API and its terminal
 websocket. No client of our own beyond these few calls: Jupyter's API, tornado's websocket.
 
-`JupyterServer(port, token)` talks to a running server (the workbench started by
-course_testkit.workbench, or one in a container with its port published); `terminal()` is one of
-its terminals (`POST /api/terminals`, then the websocket `/terminals/websocket/<name>`, JSON
+`JupyterSession` is a way into one Jupyter server: `request` (REST) and `websocket_request` (a
+websocket's URL and headers), and the calls the tests make on top of them. `JupyterServer(port,
+token)` is one reached with its token (the workbench started by course_testkit.workbench, or one in
+a container with its port published); course_testkit.hub's `HubUser` one reached through a hub with
+a user's login cookies. `terminal()` is one of its terminals (`POST /api/terminals`, then the websocket `/terminals/websocket/<name>`, JSON
 ["stdin", text] in and ["stdout", text] out): `run(command)` types a command line and returns its
 exit status and what it printed.
 
@@ -23,6 +25,7 @@ import uuid
 from typing import Any, Dict, Optional, Tuple
 
 import tornado.httpclient
+from tornado.httpclient import HTTPRequest
 from tornado.websocket import WebSocketError, websocket_connect
 
 STOP_TIMEOUT_S = 20.0
@@ -33,33 +36,17 @@ class JupyterError(RuntimeError):
     """The server did not start or refused a call, or a terminal command did not finish in time."""
 
 
-class JupyterServer:
-    """A running Jupyter server at 127.0.0.1:`port`, whose token is `token`."""
-
-    def __init__(self, port: int, token: str) -> None:
-        self.port, self.token = port, token
-
-    @property
-    def url(self) -> str:
-        return "http://127.0.0.1:%d" % self.port
+class JupyterSession:
+    """A way into one Jupyter server (see the module docstring)."""
 
     def request(self, method: str, path: str, body: Any = None, token: Optional[str] = "",
                 follow: bool = True) -> Tuple[int, bytes, Dict[str, str]]:
-        """(status, body, headers) of a request to JupyterLab; `token` None sends none, "" ours."""
-        headers = {}
-        if token is not None:
-            headers["Authorization"] = "token %s" % (token or self.token)
-        data = None
-        if body is not None:
-            data = json.dumps(body).encode()
-            headers["Content-Type"] = "application/json"
-        request = urllib.request.Request(self.url + path, data=data, method=method, headers=headers)
-        opener = urllib.request.build_opener() if follow else urllib.request.build_opener(_NoRedirect)
-        try:
-            with opener.open(request, timeout=REQUEST_TIMEOUT_S) as reply:
-                return reply.status, reply.read(), dict(reply.headers)
-        except urllib.error.HTTPError as err:
-            return err.code, err.read(), dict(err.headers)
+        """(status, body, headers) of a request to the server, at `path` under its base."""
+        raise NotImplementedError
+
+    def websocket_request(self, path: str) -> HTTPRequest:
+        """The websocket request (URL, headers) for `path` under the server's base."""
+        raise NotImplementedError
 
     def status(self, path: str, token: Optional[str] = "") -> Optional[int]:
         try:
@@ -85,6 +72,38 @@ class JupyterServer:
     def terminal(self) -> "Terminal":
         name = self.api("POST", "/api/terminals")["name"]
         return Terminal(self, name)
+
+
+class JupyterServer(JupyterSession):
+    """A running Jupyter server at 127.0.0.1:`port`, whose token is `token`."""
+
+    def __init__(self, port: int, token: str) -> None:
+        self.port, self.token = port, token
+
+    @property
+    def url(self) -> str:
+        return "http://127.0.0.1:%d" % self.port
+
+    def websocket_request(self, path: str) -> HTTPRequest:
+        return HTTPRequest("ws://127.0.0.1:%d%s?token=%s" % (self.port, path, self.token))
+
+    def request(self, method: str, path: str, body: Any = None, token: Optional[str] = "",
+                follow: bool = True) -> Tuple[int, bytes, Dict[str, str]]:
+        """(status, body, headers) of a request to JupyterLab; `token` None sends none, "" ours."""
+        headers = {}
+        if token is not None:
+            headers["Authorization"] = "token %s" % (token or self.token)
+        data = None
+        if body is not None:
+            data = json.dumps(body).encode()
+            headers["Content-Type"] = "application/json"
+        request = urllib.request.Request(self.url + path, data=data, method=method, headers=headers)
+        opener = urllib.request.build_opener() if follow else urllib.request.build_opener(_NoRedirect)
+        try:
+            with opener.open(request, timeout=REQUEST_TIMEOUT_S) as reply:
+                return reply.status, reply.read(), dict(reply.headers)
+        except urllib.error.HTTPError as err:
+            return err.code, err.read(), dict(err.headers)
 
 
 def refused_websocket(url: str) -> Optional[int]:
@@ -114,16 +133,16 @@ _ANSI = re.compile(r"\x1b(\[[0-9;?]*[ -/]*[@-~]|\][^\x07\x1b]*(\x07|\x1b\\)?|[()
 class Terminal:
     """One of JupyterLab's terminals, through its websocket (see the module docstring)."""
 
-    def __init__(self, server: JupyterServer, name: str) -> None:
+    def __init__(self, server: JupyterSession, name: str) -> None:
         self.server, self.name = server, name
         # The websocket's loop runs all the time, in a thread of its own: Jupyter pings its
         # terminals' websockets and closes one that leaves its pings unanswered.
         self.loop = asyncio.new_event_loop()
         self.thread = threading.Thread(target=self.loop.run_forever, name="terminal-%s" % name, daemon=True)
         self.thread.start()
-        url = "ws://127.0.0.1:%d/terminals/websocket/%s?token=%s" % (server.port, name, server.token)
         self.pending = ""
-        self.socket = self._call(self._connect(url), REQUEST_TIMEOUT_S)
+        self.socket = self._call(self._connect(server.websocket_request("/terminals/websocket/%s" % name)),
+                                 REQUEST_TIMEOUT_S)
 
     def _call(self, coroutine: Any, timeout: float) -> Any:
         """Run `coroutine` on the websocket's loop; its result."""
@@ -145,8 +164,9 @@ class Terminal:
         return int(found.group(1)), text[start:found.start()]
 
     @staticmethod
-    async def _connect(url: str):
-        return await websocket_connect(url, connect_timeout=REQUEST_TIMEOUT_S)
+    async def _connect(request: HTTPRequest):
+        request.connect_timeout = REQUEST_TIMEOUT_S
+        return await websocket_connect(request)
 
     async def _send(self, message: list) -> None:
         await self.socket.write_message(json.dumps(message))

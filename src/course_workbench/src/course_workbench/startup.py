@@ -11,6 +11,10 @@ becomes JupyterLab, run from its own venv (.venv-jupyter, see requirements-jupyt
 JupyterLab starts from the environment of no catkin workspace (workbench_env): its terminals
 source the course workspace and the overlay themselves (config/terminal.bashrc), so no entry of
 another workspace (the reference solutions' overlay) is on any of their paths.
+
+Spawned by JupyterHub (its spawner sets JUPYTERHUB_API_TOKEN), it becomes `jupyterhub-singleuser`
+instead, with the same settings less the token and the address: the hub's login guards every path
+and the hub tells the server where to listen (deploy/jupyterhub/, docs/hub.md).
 """
 from __future__ import annotations
 
@@ -49,6 +53,7 @@ TOKEN_VAR = "COURSE_WORKBENCH_TOKEN"  # the lab page's copy of Jupyter's token (
 XSTARTUP_VAR = "JUPYTER_REMOTE_DESKTOP_PROXY_XSTARTUP"
 DISPLAY_FILE_VAR = "COURSE_WORKBENCH_DISPLAY_FILE"
 STATE_FOLDER = os.path.join(".local", "share", "course-workbench")  # under the home: settings, display
+HUB_VAR = "JUPYTERHUB_API_TOKEN"  # set by every JupyterHub spawner: this server is one of a hub's users'
 
 
 class StartError(Exception):
@@ -191,21 +196,27 @@ def roslab_server(course: Course, overlay: str, token: str) -> Dict[str, object]
     }
 
 
-def jupyter_settings(course: Course, args: argparse.Namespace, port: int, token: str, root_dir: str) -> Dict:
-    """JupyterLab's settings, as the JSON of a config file."""
-    return {
-        "ServerApp": {
-            "ip": args.address, "port": port, "port_retries": 0, "open_browser": False,
-            "root_dir": root_dir, "allow_root": os.geteuid() == 0,
-            "terminado_settings": {"shell_command": ["/bin/bash", "--rcfile", course.config_file("terminal.bashrc"),
-                                                    "-i"]},
-        },
-        "IdentityProvider": {"token": token},
+def jupyter_settings(course: Course, args: argparse.Namespace, port: int, token: str, root_dir: str,
+                     hub: bool = False) -> Dict:
+    """JupyterLab's settings, as the JSON of a config file. Under a hub (`hub`) the hub's login
+    replaces the token and the hub's spawner says where to listen; `token` then only guards the
+    lab page's own port."""
+    server: Dict[str, object] = {"ip": args.address, "port": port, "port_retries": 0} if not hub else {}
+    server.update({
+        "open_browser": False, "root_dir": root_dir, "allow_root": os.geteuid() == 0,
+        "terminado_settings": {"shell_command": ["/bin/bash", "--rcfile", course.config_file("terminal.bashrc"),
+                                                "-i"]},
+    })
+    settings: Dict[str, object] = {
+        "ServerApp": server,
         "ServerProxy": {"servers": {"roslab": roslab_server(course, args.overlay, token)}},
         # No internet in a lab: no news feed, no update check.
         "LabApp": {"news_url": None, "check_for_updates_class": "jupyterlab.NeverCheckForUpdate",
                    "extension_manager": "readonly"},
     }
+    if not hub:
+        settings["IdentityProvider"] = {"token": token}
+    return settings
 
 
 def write_settings(settings: Dict, folder: str) -> str:
@@ -231,19 +242,20 @@ def main(argv: Optional[Sequence[str]] = None, env: Optional[Mapping[str, str]] 
     env = dict(os.environ if env is None else env)
     args = parse(sys.argv[1:] if argv is None else argv, env)
     course = Course()
+    hub = bool(env.get(HUB_VAR))
     if args.jupyter:
         course.jupyter_venv = args.jupyter
     try:
         port = port_number(args.port)
         args.overlay = os.path.abspath(os.path.expanduser(args.overlay))
         base = workbench_env(env, course.checkout)
-        if not args.prepare_only:
+        if not args.prepare_only and not hub:
             check_port(args.address, port)
         prepare_overlay(args.overlay, course.setup, base)
         if args.prepare_only:
             print("workbench: %s is ready" % args.overlay, flush=True)
             return 0
-        jupyter_lab = os.path.join(course.jupyter_venv, "bin", "jupyter-lab")
+        jupyter_lab = os.path.join(course.jupyter_venv, "bin", "jupyterhub-singleuser" if hub else "jupyter-lab")
         if not os.access(jupyter_lab, os.X_OK):
             raise StartError("JupyterLab is not installed (%s is missing): run `make deps`" % jupyter_lab)
     except StartError as err:
@@ -253,7 +265,7 @@ def main(argv: Optional[Sequence[str]] = None, env: Optional[Mapping[str, str]] 
     home = env.get("HOME") or os.path.expanduser("~")
     root_dir = os.path.abspath(args.root_dir or home)
     state = os.path.join(home, STATE_FOLDER)
-    config = write_settings(jupyter_settings(course, args, port, token, root_dir), state)
+    config = write_settings(jupyter_settings(course, args, port, token, root_dir, hub), state)
     base.update({SETUP_VAR: course.setup, OVERLAY_VAR: args.overlay, "SHELL": "/bin/bash"})
     base.update(desktop_env(course, state, port))
     with contextlib.suppress(FileNotFoundError):  # a display left by a desktop that was killed
@@ -261,9 +273,13 @@ def main(argv: Optional[Sequence[str]] = None, env: Optional[Mapping[str, str]] 
     base.setdefault("ROS_MASTER_URI", DEFAULT_MASTER_URI)
     if "ROS_IP" not in base:
         base.setdefault("ROS_HOSTNAME", "localhost")
-    print("workbench: JupyterLab on %s port %d, your files in %s, your workspace %s" % (
-        args.address, port, root_dir, args.overlay), flush=True)
-    print("workbench: open %s" % page_url(args.address, port, token, args.url_host), flush=True)
+    if hub:
+        print("workbench: jupyterhub-singleuser for %s, your files in %s, your workspace %s" % (
+            env.get("JUPYTERHUB_USER", "?"), root_dir, args.overlay), flush=True)
+    else:
+        print("workbench: JupyterLab on %s port %d, your files in %s, your workspace %s" % (
+            args.address, port, root_dir, args.overlay), flush=True)
+        print("workbench: open %s" % page_url(args.address, port, token, args.url_host), flush=True)
     os.chdir(root_dir)  # where a terminal opened by the REST API starts (JupyterLab's own pass a folder)
     os.execve(jupyter_lab, [jupyter_lab, "--config=%s" % config], base)
     return 0  # not reached

@@ -136,3 +136,12 @@ echo "4[${DISPLAY:-none}]"
         finally:
             os.unlink(x_socket)
     assert said.split() == ["1[none]", "2[:%d]" % number, "3[none]", "4[:0]"], said
+
+
+def test_under_a_hub_the_hubs_login_replaces_the_token_and_the_hub_says_where_to_listen():
+    args = argparse.Namespace(address="0.0.0.0", overlay="/home/student/catkin_ws")
+    given = startup.jupyter_settings(FakeCourse(), args, 8888, "tok", "/home/student", hub=True)
+    assert "IdentityProvider" not in given
+    assert not {"ip", "port", "port_retries"} & set(given["ServerApp"])
+    assert given["ServerApp"]["terminado_settings"] == settings()["ServerApp"]["terminado_settings"]
+    assert given["ServerProxy"]["servers"]["roslab"]["request_headers_override"] == {"Cookie": "course_web_token=tok"}

@@ -1,0 +1,73 @@
+"""`make hub-grade` (rosrun course_hub hub_grade): at a deadline, grade the class from the hub.
+
+    rosrun course_hub hub_grade --data /var/lib/ros-course-hub --class-list classlist.csv [--only M ...] [--jobs N]
+
+1. snapshot: every student's catkin_ws/src (the hub's users/<user>/src) copied read-only into
+   <data>/snapshots/<stamp>/<user>, the moment the command runs;
+2. the course's grader grades that folder as a class (`rosrun course_grader grade --class ...
+   --out <data>/grades/<stamp>`): the gradebook's rows are the hub's user names;
+3. each student's own results (results.json, the milestones' logs, report.txt) are copied into
+   their ~/grades/<stamp>/ (read-only in their workbench); the class's gradebook.csv and
+   report.html stay with the TAs.
+
+Exit code: the grader's (0 when it graded everyone), 2 on a bad class list or data folder.
+"""
+from __future__ import annotations
+
+import argparse
+import datetime
+import os
+import subprocess
+import sys
+from typing import List, Optional, Sequence
+
+from course_hub import classlist, grading
+
+
+def parse(argv: Sequence[str]) -> argparse.Namespace:
+    parser = argparse.ArgumentParser(prog="hub_grade", description=__doc__.split("\n\n")[0])
+    parser.add_argument("--data", required=True, help="the hub's data folder (HubSettings.data_dir)")
+    parser.add_argument("--class-list", required=True, help="the class list CSV: its students are graded")
+    parser.add_argument("--out", default="", help="the grader's output (default <data>/grades/<stamp>)")
+    parser.add_argument("--only", action="extend", nargs="+", default=[], metavar="M", help="only these milestones")
+    parser.add_argument("--jobs", type=int, default=0, help="the grader's parallel runs (default: its own)")
+    parser.add_argument("--stamp", default="", help="the snapshot's name (default: UTC time, 20261126T160000Z)")
+    return parser.parse_args(list(argv))
+
+
+def grade_command(class_dir: str, out: str, only: List[str], jobs: int) -> List[str]:
+    command = ["rosrun", "course_grader", "grade", "--class", class_dir, "--out", out]
+    if only:
+        command += ["--only"] + list(only)
+    if jobs:
+        command += ["--jobs", str(jobs)]
+    return command
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    args = parse(sys.argv[1:] if argv is None else argv)
+    try:
+        students = classlist.load(args.class_list).students
+    except classlist.ClassListError as err:
+        print("hub_grade: %s" % err, file=sys.stderr)
+        return 2
+    if not os.path.isdir(os.path.join(args.data, "users")):
+        print("hub_grade: %s holds no users/ folder: is it the hub's data folder?" % args.data, file=sys.stderr)
+        return 2
+    stamp = args.stamp or datetime.datetime.now(datetime.timezone.utc).strftime("%Y%m%dT%H%M%SZ")
+    class_dir = os.path.join(args.data, "snapshots", stamp)
+    out = args.out or os.path.join(args.data, "grades", stamp)
+    os.makedirs(os.path.dirname(class_dir), mode=0o755, exist_ok=True)
+    if os.path.exists(class_dir):
+        print("hub_grade: the snapshot %s exists already: pick another --stamp" % class_dir, file=sys.stderr)
+        return 2
+    counts = grading.snapshot(args.data, class_dir, students)
+    for user, count in counts.items():
+        skipped = " (%d special files left out)" % len(count.skipped) if count.skipped else ""
+        print("hub_grade: snapshot %s: %d files%s" % (user, count.files, skipped), flush=True)
+    print("hub_grade: snapshot of %d students, read-only, in %s" % (len(counts), class_dir), flush=True)
+    done = subprocess.run(grade_command(class_dir, out, args.only, args.jobs), check=False)
+    written = grading.publish(out, args.data, students, stamp)
+    print("hub_grade: reports copied to %d students' ~/grades/%s; the gradebook: %s" % (
+        len(written), stamp, os.path.join(out, "gradebook.csv")), flush=True)
+    return done.returncode

@@ -127,11 +127,15 @@ def ensure_emulation(arch: str) -> None:
     if not entry.exists() or not binfmt_usable(entry.read_text()):
         raise Unavailable("%s is not registered with the F flag: %s" % (
             entry, entry.read_text().strip() if entry.exists() else "missing"))
+
+
+def probe_emulation(arch: str) -> None:
+    """A container of `arch`'s base image runs, and its kernel machine is `arch`'s (qemu's)."""
     probe = podman("run", "--rm", "--network", "none", "--arch", arch, base_image(arch, host_arch()),
-                   "uname", "-m", check=False, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True) \
-        if podman_check.image_exists(base_image(arch, host_arch())) else None
-    if probe is not None and probe.stdout.strip() != QEMU_NAMES[arch]:
-        raise Unavailable("a %s container does not run here: %s" % (arch, probe.stdout.strip()[-300:]))
+                   "uname", "-m", check=False, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    if probe.stdout.strip() != QEMU_NAMES[arch]:
+        raise Unavailable("a linux/%s container does not run here: %s" % (arch, probe.stdout.strip()[-300:]))
+    print("a linux/%s container runs here: uname -m says %s" % (arch, probe.stdout.strip()), flush=True)
 
 
 def import_foreign_base(arch: str, log: Path) -> None:
@@ -183,6 +187,7 @@ def image_action(opts: argparse.Namespace, steps: Steps, scratch: Path, logs: Pa
     for arch in opts.arch:
         steps.run("emulation for %s" % arch, ensure_emulation, arch)
         steps.run("base image for %s" % arch, import_base, arch, logs / ("import-%s.log" % arch))
+        steps.run("a linux/%s container" % arch, probe_emulation, arch)
     times_path = logs / BUILD_TIMES
     times = json.loads(times_path.read_text()) if times_path.exists() else {}
     for arch in opts.arch:
@@ -190,6 +195,13 @@ def image_action(opts: argparse.Namespace, steps: Steps, scratch: Path, logs: Pa
                   build_image, arch, scratch, logs / ("build-%s.log" % arch))
         times[arch] = round(steps.times[-1][1], 1)
         times_path.write_text(json.dumps(times, indent=1) + "\n")
+    return manifest_action(opts, steps, scratch, logs)
+
+
+def manifest_action(opts: argparse.Namespace, steps: Steps, scratch: Path, logs: Path) -> bool:
+    """The manifest list made anew from the images of opts.arch, built before."""
+    for arch in opts.arch:
+        image_exists_or_fail(arch)
     platforms = steps.run("manifest list %s" % MANIFEST, make_manifest, opts.arch, logs / "manifest.log")
     wanted = sorted("linux/%s" % a for a in opts.arch)
     print("%s holds %s" % (MANIFEST, ", ".join(platforms)), flush=True)
@@ -225,7 +237,7 @@ class ContainerWorkbench(Workbench):
     drives a workbench on the host."""
 
     def __init__(self, image: str, src: Path, log: Path) -> None:
-        super().__init__(env={})
+        super().__init__(env={}, home=str(src.parent))  # the caller's scratch folder, removed by it
         self.image, self.src, self.log = image, src, log
         self.container = "ros-course-multiarch-workbench"
 
@@ -275,9 +287,10 @@ def workbench_and_self_check(arch: str, scratch: Path, log: Path) -> List[Tuple[
             code, output = terminal.run("course-check --only chatter", timeout=SELF_CHECK_TIMEOUT_S)
         with open(log, "a") as out:
             out.write("\n$ course-check --only chatter\n%s\n" % output)
-        verdict = [line.strip() for line in output.splitlines() if re.search(r"\bchatter\b.*\b(PASS|FAIL)", line)]
-        results.append(("course-check on a correct chatter package", code == 0 and bool(verdict)
-                        and "PASS" in verdict[-1], "exit %d, %s, %.0f s" % (
+        # the self-check's verdict line: "PASS  chatter: Example publisher and subscriber (...)"
+        verdict = [line.strip() for line in output.splitlines() if re.match(r"(PASS|FAIL)\s+chatter:", line)]
+        results.append(("course-check on a correct chatter package", code == 0 and len(verdict) == 1
+                        and verdict[0].startswith("PASS"), "exit %d, %s, %.0f s" % (
                             code, verdict[-1] if verdict else "no chatter verdict", time.monotonic() - started)))
     return results
 
@@ -291,7 +304,8 @@ def check_action(opts: argparse.Namespace, steps: Steps, scratch: Path, logs: Pa
     lines += steps.run("workbench and self-check in linux/%s" % arch, workbench_and_self_check, arch, scratch,
                        logs / ("workbench-%s.log" % arch))
     for check, passed, seen in lines:
-        print("%s %s (linux/%s): %s" % ("PASS" if passed else "FAIL", check, arch, seen), flush=True)
+        print("%s %s (linux/%s%s): %s" % ("PASS" if passed else "FAIL", check, arch,
+                                            "" if arch == host_arch() else ", emulated", seen), flush=True)
     return all(passed for _, passed, _ in lines)
 
 
@@ -317,7 +331,7 @@ def figures_action(opts: argparse.Namespace, steps: Steps, scratch: Path, logs: 
     return ok
 
 
-ACTIONS = {"image": image_action, "check": check_action, "figures": figures_action}
+ACTIONS = {"image": image_action, "manifest": manifest_action, "check": check_action, "figures": figures_action}
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:
@@ -326,6 +340,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     image = sub.add_parser("image", help="both images from docker/Dockerfile, and the manifest list")
     image.add_argument("--arch", action="append", choices=ARCHES,
                        help="build only this architecture (repeatable; default both)")
+    joined = sub.add_parser("manifest", help="only the manifest list, from images built before")
+    joined.add_argument("--arch", action="append", choices=ARCHES, help="only this image (default both)")
     check = sub.add_parser("check", help="the demo, make jupyter and course-check in one image (default arm64)")
     check.add_argument("--arch", action="append", choices=ARCHES, help="the image to check (default arm64)")
     figures = sub.add_parser("figures", help="sizes, build times, the demo's time in each image")
@@ -333,7 +349,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     figures.add_argument("--runs", type=int, default=1, help="demo runs per image (default 1)")
     parser.add_argument("--logs", default=str(ROOT / "podman-logs" / "multiarch"), help="where each step's log goes")
     opts = parser.parse_args(argv)
-    if opts.action == "image" and opts.arch is None:
+    if opts.action in ("image", "manifest") and opts.arch is None:
         opts.arch = list(ARCHES)
     return podman_check.run_action("multiarch", opts, ACTIONS[opts.action], Path(opts.logs))
 

@@ -121,6 +121,21 @@ autograder-check:
 	@$(MAKE) --no-print-directory autograder MILESTONES=chatter
 	@/usr/bin/python3 $(ROOT)/tools/podman_check.py autograder-check $(ROOT)/autograder.zip
 
+# The course image for linux/amd64 and linux/arm64 (Apple Silicon), both built here by podman (root) from
+# docker/Dockerfile, the arm64 one under qemu-user-static, joined in the manifest list ros-course-multiarch.
+# image-arm64-check: the arm64 image under emulation: the demo, course-check on a correct chatter package,
+# make jupyter answering over HTTP. image-figures: sizes, the demo's time emulated against native.
+# Hours of emulated work on a small machine; not part of make test. See docs/images.md.
+.PHONY: image-multiarch image-arm64-check image-figures
+image-multiarch:
+	@/usr/bin/python3 $(ROOT)/tools/multiarch.py image $(MULTIARCH_ARGS)
+
+image-arm64-check:
+	@/usr/bin/python3 $(ROOT)/tools/multiarch.py check $(MULTIARCH_ARGS)
+
+image-figures:
+	@/usr/bin/python3 $(ROOT)/tools/multiarch.py figures $(MULTIARCH_ARGS)
+
 # ROS 1's own tutorials as an overlay on this workspace: built, their tests run, turtle_tf2's demos
 # (Python and C++) against our turtlesim. TUTORIALS=DIR holds ros_tutorials, geometry_tutorials and
 # common_tutorials (sources, never committed); not part of make test. See docs/noetic_cxx.md.

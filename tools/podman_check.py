@@ -587,40 +587,49 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     grader.add_argument("zip", help="autograder.zip made with MILESTONES=chatter")
     parser.add_argument("--logs", default=str(ROOT / "podman-logs"), help="where each step's log goes")
     opts = parser.parse_args(argv)
-    logs = Path(opts.logs)
+    actions = {"image": image_action, "docker-check": docker_check, "jupyter-check": jupyter_check_action,
+               "autograder-check": autograder_check}
+    return run_action("podman_check", opts, actions[opts.action], Path(opts.logs))
+
+
+def image_action(opts: argparse.Namespace, steps: Steps, scratch: Path, logs: Path) -> bool:
+    steps.run("base image import", import_base, logs / "import.log")
+    steps.run("image build", build_course_image, scratch, logs / "build.log")
+    if opts.rebuild:
+        steps.run("image build, again (cached layers)", build_course_image, scratch, logs / "build-again.log")
+    return True
+
+
+def jupyter_check_action(opts: argparse.Namespace, steps: Steps, scratch: Path, logs: Path) -> bool:
+    ok = steps.run("make jupyter through a published port, as user student", jupyter_check, scratch,
+                   logs / "jupyter.log")
+    if opts.runs:
+        ok &= steps.run("make jupyter's start-up, %d times" % opts.runs, jupyter_starts, opts.runs, scratch,
+                        logs / "jupyter-starts.log")
+    return ok
+
+
+def run_action(tool: str, opts: argparse.Namespace, action, logs: Path) -> int:
+    """`action(opts, steps, scratch, logs)` with podman ready, a scratch folder removed afterwards,
+    and each step's time printed at the end; the exit code (2: podman cannot run here)."""
     logs.mkdir(parents=True, exist_ok=True)
     steps = Steps()
-    scratch = Path(tempfile.mkdtemp(prefix="podman-check-"))
+    scratch = Path(tempfile.mkdtemp(prefix="%s-" % tool))
     scratch.chmod(0o755)
     try:
         ensure_podman()
-        if opts.action == "image":
-            steps.run("base image import", import_base, logs / "import.log")
-            steps.run("image build", build_course_image, scratch, logs / "build.log")
-            if opts.rebuild:
-                steps.run("image build, again (cached layers)", build_course_image, scratch, logs / "build-again.log")
-            ok = True
-        elif opts.action == "docker-check":
-            ok = docker_check(opts, steps, scratch, logs)
-        elif opts.action == "jupyter-check":
-            ok = steps.run("make jupyter through a published port, as user student", jupyter_check, scratch,
-                           logs / "jupyter.log")
-            if opts.runs:
-                ok &= steps.run("make jupyter's start-up, %d times" % opts.runs, jupyter_starts, opts.runs, scratch,
-                                logs / "jupyter-starts.log")
-        else:
-            ok = autograder_check(opts, steps, scratch, logs)
+        ok = action(opts, steps, scratch, logs)
     except Unavailable as e:
-        print("podman_check: %s" % e, file=sys.stderr)
+        print("%s: %s" % (tool, e), file=sys.stderr)
         return 2
     except subprocess.CalledProcessError as e:
-        print("podman_check: %s failed (exit %s); see the logs in %s" % (" ".join(map(str, e.cmd))[:200],
-                                                                         e.returncode, logs), file=sys.stderr)
+        print("%s: %s failed (exit %s); see the logs in %s" % (tool, " ".join(map(str, e.cmd))[:200],
+                                                               e.returncode, logs), file=sys.stderr)
         ok = False
     finally:
         shutil.rmtree(scratch, ignore_errors=True)
     print(steps.table())
-    print("podman_check %s: %s (logs in %s)" % (opts.action, "ok" if ok else "FAILED", logs))
+    print("%s %s: %s (logs in %s)" % (tool, opts.action, "ok" if ok else "FAILED", logs))
     return 0 if ok else 1
 
 

@@ -51,7 +51,10 @@ class Workbench(JupyterServer):
         base.update({"HOME": self.home, "JUPYTER_TOKEN": self.token, "JUPYTER_PORT": str(self.port),
                      "ROS_MASTER_URI": self.master_uri, "ROS_HOSTNAME": "localhost", "PYTHONUNBUFFERED": "1",
                      isolation.TOKEN_VAR: self.run_token})
-        for name in ("ROS_IP", "ROS_HOME", "ROS_LOG_DIR", "JUPYTER_ADDRESS", "JUPYTER_URL_HOST", "DISPLAY"):
+        # as a student's shell: no display and no Qt platform of the suite's (offscreen would keep
+        # turtlesim's and rviz's windows off the desktop)
+        for name in ("ROS_IP", "ROS_HOME", "ROS_LOG_DIR", "JUPYTER_ADDRESS", "JUPYTER_URL_HOST", "DISPLAY",
+                     "QT_QPA_PLATFORM"):
             base.pop(name, None)
         self.env = base
         self.log_path = os.path.join(self.home, "workbench.log")

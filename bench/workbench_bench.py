@@ -32,7 +32,7 @@ import time
 from pathlib import Path
 from typing import Dict, List, Optional, Sequence
 
-from course_sandbox.procs import proportional_bytes
+from course_sandbox.procs import cmdline, proportional_bytes
 from course_testkit.isolation import pids_with_token
 from course_testkit.rosbridge import frame_rate
 from course_testkit.waiting import wait_for
@@ -99,10 +99,8 @@ def program_mib(bench: Workbench) -> Dict[str, float]:
     perl the script's."""
     found: Dict[str, float] = {}
     for pid in pids_with_token(bench.run_token):
-        try:
-            with open("/proc/%d/cmdline" % pid, "rb") as f:
-                words = [w.decode(errors="replace") for w in f.read().split(b"\0") if w]
-        except OSError:
+        words = cmdline(pid)
+        if not words:  # gone
             continue
         names = [os.path.basename(w) for w in words[:3] if not w.startswith("-")]
         name = next((n for n in names[1:] if names[0].startswith(("python", "perl"))), None) \

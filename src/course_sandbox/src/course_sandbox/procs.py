@@ -15,6 +15,24 @@ def pids() -> Iterable[int]:
             yield int(entry)
 
 
+def environ(pid: int) -> List[bytes]:
+    """The `NAME=value` entries `pid` was exec'd with ([] when it is gone or not ours to read)."""
+    try:
+        with open("/proc/%d/environ" % pid, "rb") as f:
+            return f.read().split(b"\0")
+    except OSError:
+        return []
+
+
+def cmdline(pid: int) -> List[str]:
+    """`pid`'s command line, word by word ([] when it is gone)."""
+    try:
+        with open("/proc/%d/cmdline" % pid, "rb") as f:
+            return [part.decode(errors="replace") for part in f.read().split(b"\0") if part]
+    except OSError:
+        return []
+
+
 def parent(pid: int) -> Optional[int]:
     try:
         with open("/proc/%d/stat" % pid) as f:

@@ -79,12 +79,7 @@ def pids_with_token(token: str) -> List[int]:
     for pid in procs.pids():
         if pid == os.getpid():
             continue
-        try:
-            with open("/proc/%d/environ" % pid, "rb") as f:
-                variables = f.read().split(b"\0")
-        except OSError:  # gone, or not ours
-            continue
-        if needle in variables:
+        if needle in procs.environ(pid):  # [] when gone, or not ours
             found.append(pid)
     return found
 

@@ -18,6 +18,8 @@ import tempfile
 import time
 from typing import Any, List, Mapping, Optional, Sequence
 
+from course_sandbox import procs
+
 from course_testkit import isolation
 from course_testkit.jupyter import STOP_TIMEOUT_S, JupyterError, JupyterServer, Terminal
 from course_testkit.nodes import find_executable
@@ -100,7 +102,7 @@ class Workbench(JupyterServer):
 
     def processes(self, word: str) -> List[List[str]]:
         """The command lines of the workbench's processes (those with its run token) naming `word`."""
-        return [c for c in map(_cmdline, isolation.pids_with_token(self.run_token)) if any(word in p for p in c)]
+        return [c for c in map(procs.cmdline, isolation.pids_with_token(self.run_token)) if any(word in p for p in c)]
 
     def lab_view_port(self) -> Optional[int]:
         """The port of the lab page's lab_view (behind /roslab/), once roslab started it."""
@@ -114,14 +116,6 @@ class Workbench(JupyterServer):
 
     def __exit__(self, *exc: Any) -> None:
         self.stop()
-
-
-def _cmdline(pid: int) -> List[str]:
-    try:
-        with open("/proc/%d/cmdline" % pid, "rb") as f:
-            return [part.decode(errors="replace") for part in f.read().split(b"\0") if part]
-    except OSError:
-        return []
 
 
 def open_from_launcher(browser: Any, bench: Workbench, title: str, path: str) -> None:

@@ -55,6 +55,7 @@ CHATTER_SAMPLE = ROOT / "tests" / "submissions" / "lab2_chatter_scripts"
 # Under emulation a process runs several times slower: the checks wait this much longer.
 START_TIMEOUT_S = 600.0
 SELF_CHECK_TIMEOUT_S = 1800.0
+DESKTOP_TIMEOUT_S = 300.0  # the desktop's X session and VNC server start on its first websocket
 
 
 def oci_arch(machine: str) -> str:
@@ -266,8 +267,9 @@ class ContainerWorkbench(Workbench):
 
 
 def workbench_and_self_check(arch: str, scratch: Path, log: Path) -> List[Tuple[str, bool, str]]:
-    """make jupyter's workbench over HTTP, then course-check typed in one of its terminals on a
-    correct chatter package: a (check, passed, what was seen) for each."""
+    """make jupyter's workbench over HTTP, its desktop's VNC server through the websocket, then
+    course-check typed in one of its terminals on a correct chatter package: a (check, passed,
+    what was seen) for each."""
     name = image_exists_or_fail(arch)
     src = scratch / "src"
     shutil.copytree(CHATTER_SAMPLE, src, ignore=shutil.ignore_patterns("expected.json"))
@@ -282,6 +284,13 @@ def workbench_and_self_check(arch: str, scratch: Path, log: Path) -> List[Tuple[
         results.append(("make jupyter answers over HTTP", api == 200 and lab == 200 and anonymous == 403,
                         "/api/status %s, /lab %s with the token, /api/status %s without, %.1f s to answer"
                         % (api, lab, anonymous, bench.started_s)))
+        started = time.monotonic()
+        try:
+            greeting = bench.desktop_greeting(DESKTOP_TIMEOUT_S).decode(errors="replace").strip()
+        except Exception as err:  # noqa: BLE001 (whatever stops it is this check's FAIL, in words)
+            greeting = "%s: %s" % (type(err).__name__, err)
+        results.append(("the desktop's VNC server answers through /desktop-websockify/",
+                        greeting.startswith("RFB 003."), "%r, %.1f s" % (greeting[:200], time.monotonic() - started)))
         started = time.monotonic()
         with bench.terminal() as terminal:
             code, output = terminal.run("course-check --only chatter", timeout=SELF_CHECK_TIMEOUT_S)

@@ -73,6 +73,23 @@ class JupyterSession:
         name = self.api("POST", "/api/terminals")["name"]
         return Terminal(self, name)
 
+    def desktop_greeting(self, timeout: float = 60.0) -> bytes:
+        """The first message of the desktop's websocket (jupyter-remote-desktop-proxy's
+        `/desktop-websockify/`): the VNC server's protocol version (b"RFB 003.008\\n"), which
+        arrives only once the proxy has started the X session's VNC server."""
+        async def greet() -> bytes:
+            request = self.websocket_request("/desktop-websockify/")
+            request.connect_timeout = timeout
+            socket = await websocket_connect(request)
+            try:
+                message = await asyncio.wait_for(socket.read_message(), timeout)
+            finally:
+                socket.close()
+            if message is None:
+                raise JupyterError("the desktop's websocket closed before the VNC server spoke")
+            return message if isinstance(message, bytes) else message.encode()
+        return asyncio.run(greet())
+
 
 class JupyterServer(JupyterSession):
     """A running Jupyter server at 127.0.0.1:`port`, whose token is `token`."""

@@ -128,6 +128,8 @@ def test_the_launchers_desktop_shows_turtlesim_and_rviz_started_in_a_terminal(be
         assert os.path.join(bench.home, "catkin_ws", "src") in package_path, package_path
         paths = "".join(session.get(var, "") + ":" for var in env_paths.FOLDER_LISTS)
         assert not [m for m in REFERENCE_MARKERS if m in paths], paths
+        # beside the browser, a websocket with the token reaches the same VNC server, which speaks first
+        assert bench.desktop_greeting().startswith(b"RFB 003."), "no VNC server behind /desktop-websockify/"
 
         code, said = term.run("roslaunch turtle_tf2 turtle_tf2_demo.launch rviz:=true > ~/demo.log 2>&1 &")
         assert code == 0, said

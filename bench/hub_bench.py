@@ -46,6 +46,7 @@ from typing import Dict, List, Optional, Tuple
 
 from tornado.websocket import websocket_connect
 
+from course_hub import passwords
 from course_testkit.hub import HubUser, LocalHub
 
 PODMAN = ["podman", "--runtime", "runc", "--cgroup-manager=cgroupfs"]
@@ -109,7 +110,7 @@ class LabPage:
 
 class Student:
     def __init__(self, hub: LocalHub, name: str) -> None:
-        self.user = HubUser(hub.url, name, "pw-" + name + "-bench")
+        self.user = HubUser(hub.url, name, passwords.read_sheet(passwords.sheet_of(str(hub.data)))[name])
         self.user.login()
         self.spawn_s = self.user.start()
         status, url = self.user.open_server()  # JupyterLab's page: the hub's OAuth, the server's cookies

@@ -52,6 +52,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tools"))
 from podman_check import PODMAN, network_mounts  # noqa: E402
 
+from course_hub import passwords as hub_passwords  # noqa: E402
 from course_testkit.hub import HubUser, LocalHub, SpawnFailed  # noqa: E402
 from course_testkit.waiting import wait_for  # noqa: E402
 
@@ -150,26 +151,32 @@ def run(opts: argparse.Namespace) -> int:
     hub = LocalHub(opts.image, work, STUDENTS + (FAILING,), (TA,), CHECK_CONFIG)
     users: Dict[str, HubUser] = {}
     terms: Dict[str, object] = {}
-    passwords = {name: secrets.token_urlsafe(12) for name in STUDENTS + (FAILING, TA)}
+    passwords: Dict[str, str] = {}
     try:
         if not report.attempt("make hub's runner starts JupyterHub with deploy/jupyterhub's config", hub.start):
             print(hub.tail())
             return finish(report, started)
+        # the initial passwords the hub gave the class list at its start (its hand-out sheet)
+        passwords.update(hub_passwords.read_sheet(hub_passwords.sheet_of(str(hub.data))))
         for name in STUDENTS + (TA,):
             users[name] = HubUser(hub.url, name, passwords[name])
 
         def logins() -> str:
-            for user in users.values():
-                user.login()
+            assert sorted(passwords) == sorted(STUDENTS + (FAILING, TA)), sorted(passwords)
+            # before anyone logged in: a classmate cannot claim alice's name with a password of their own
+            claim = HubUser(hub.url, "alice", secrets.token_urlsafe(12))
             wrong = HubUser(hub.url, "alice", "not-" + passwords["alice"])
             stranger = HubUser(hub.url, "mallory", "whatever-she-likes")
-            for intruder in (wrong, stranger):
+            for intruder in (claim, wrong, stranger):
                 try:
                     intruder.login()
                 except Exception:
                     continue
                 raise AssertionError("%s logged in with a password that is not theirs" % intruder.name)
-            return "4 users set their password at their first login; a wrong password and a name off the list refused"
+            for user in users.values():
+                user.login()
+            return ("%d users on the hand-out sheet; 4 log in with theirs; claiming a listed name first, a wrong "
+                    "password and a name off the list refused" % len(passwords))
         report.attempt("each user logs in through the hub's form (xsrf, cookies)", logins)
 
         spawn_times: Dict[str, float] = {}

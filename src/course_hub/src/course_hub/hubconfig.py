@@ -5,9 +5,11 @@ calls `apply(c, settings)`. What it sets up, and why:
 
 - **Accounts:** the class list (course_hub.classlist) is the hub's allowed users; its TAs are the
   hub's admins (JupyterHub's `admin` role: they open any student's server, `/user/<name>/`).
-  Passwords are set at the first login (FirstUseAuthenticator: whoever logs in first as `alice`
-  chooses alice's password; `/hub/auth/change-password` changes it, and an admin's reset is
-  deleting the entry, docs/hub.md).
+  Passwords: FirstUseAuthenticator, with every listed user given an initial password when the hub
+  starts (course_hub.passwords: its hash in the authenticator's file, the password on the sheet
+  `<data>/initial-passwords.csv` the instructor hands out), so nobody can claim a classmate's
+  name by logging in first; `/hub/auth/change-password` changes it, and an admin's reset is
+  deleting the entry and restarting the hub (docs/hub.md).
 - **Each student a container** of the student image (DockerSpawner, through the engine's Docker
   API: podman's `system service` here), running `make jupyter`, which becomes
   `jupyterhub-singleuser` under a hub (course_workbench.startup). The container is removed when the
@@ -40,7 +42,7 @@ from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional
 from urllib.parse import urlparse
 
-from course_hub import classlist
+from course_hub import classlist, passwords
 
 NAME_PREFIX = "course-hub-"            # containers course-hub-<user>, networks course-hub-net-<user>
 STUDENT_HOME = "/home/student"         # the student image's user (docker/Dockerfile)
@@ -70,6 +72,7 @@ class HubSettings:
     start_timeout_s: int = 180
     student_uid: int = 1000                         # `student` in the image: owns the folders it writes
     proxy_command: List[str] = field(default_factory=list)  # configurable-http-proxy (make hub's npm prefix)
+    password_rounds: int = passwords.DEFAULT_ROUNDS  # bcrypt's cost for the initial passwords
 
 
 def network_name(user: str) -> str:
@@ -188,6 +191,10 @@ def apply(c: Any, settings: HubSettings) -> classlist.ClassList:
     c.JupyterHub.authenticator_class = "firstuseauthenticator.FirstUseAuthenticator"
     c.FirstUseAuthenticator.create_users = False
     c.FirstUseAuthenticator.dbm_path = os.path.join(data, "passwords.dbm")
+    given = passwords.seed(c.FirstUseAuthenticator.dbm_path, users, passwords.sheet_of(data), settings.password_rounds)
+    if given:
+        print("course hub: initial passwords for %d user(s) (%s) added to %s: hand them out"
+              % (len(given), ", ".join(name for name, _ in given), passwords.sheet_of(data)), file=sys.stderr)
     c.Authenticator.allowed_users = set(users.users)
     c.Authenticator.admin_users = set(users.admins)
 

@@ -7,7 +7,7 @@ import os
 import re
 import types
 
-from course_hub import hubconfig
+from course_hub import hubconfig, passwords
 
 CHECKOUT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", "..", ".."))
 
@@ -27,7 +27,7 @@ def applied(tmp_path):
     roster = tmp_path / "class.csv"
     roster.write_text("username,role\nalice,student\nbob,student\ntom,ta\n")
     settings = hubconfig.HubSettings(class_list=str(roster), data_dir=str(tmp_path / "data"), image="img:1",
-                                     mem_limit="1G", cpu_limit=0.5, idle_timeout_s=600)
+                                     mem_limit="1G", cpu_limit=0.5, idle_timeout_s=600, password_rounds=4)
     c = Config()
     users = hubconfig.apply(c, settings)
     return c, users, settings
@@ -40,6 +40,8 @@ def test_accounts_come_from_the_class_list_and_tas_are_admins(tmp_path):
     assert c.JupyterHub.authenticator_class == "firstuseauthenticator.FirstUseAuthenticator"
     assert c.FirstUseAuthenticator.create_users is False
     assert c.FirstUseAuthenticator.dbm_path.startswith(str(tmp_path / "data"))
+    # nobody can claim a listed name by logging in first: each has an initial password already
+    assert set(passwords.read_sheet(passwords.sheet_of(str(tmp_path / "data")))) == {"alice", "bob", "tom"}
 
 
 def test_each_student_a_container_with_limits_their_src_kept_and_grades_read_only(tmp_path):

@@ -1,0 +1,81 @@
+"""Initial passwords for the class list's users, so that nobody can claim a classmate's account.
+
+FirstUseAuthenticator lets the first person who logs in as `alice` choose alice's password. On a
+hub whose address a class shares, anyone who knows a classmate's user name could claim it first,
+and with it their files. So, when the hub starts, every listed user without a password gets an
+initial one: its bcrypt hash goes into the authenticator's own password file (the dbm it reads,
+in the format it writes: the user name's UTF-8 bytes -> `bcrypt.hashpw(password, gensalt())`),
+and the password itself onto the hand-out sheet, `<data>/initial-passwords.csv` (root's, 0600),
+which the instructor hands out. A student changes it at `/hub/auth/change-password`; a user who
+already has a password (theirs, or an initial one) is never given another.
+"""
+from __future__ import annotations
+
+import csv
+import os
+import secrets
+from typing import Callable, Dict, List, Sequence, Tuple
+
+from course_hub import classlist
+
+SHEET_NAME = "initial-passwords.csv"
+SHEET_HEADER = ("username", "role", "initial_password")
+# No look-alikes (0/o, 1/l/i): read off a sheet and typed by hand.
+ALPHABET = "abcdefghjkmnpqrstuvwxyz23456789"
+GROUPS, GROUP_LENGTH = 3, 4  # "kq7m-3tzp-x9aw": 31^12, about 2^59
+
+
+def generate(choice: Callable[[str], str] = secrets.choice) -> str:
+    """A new initial password: three groups of four characters, dash-joined."""
+    return "-".join("".join(choice(ALPHABET) for _ in range(GROUP_LENGTH)) for _ in range(GROUPS))
+
+
+DEFAULT_ROUNDS = 12  # bcrypt's cost, as FirstUseAuthenticator hashes: about 0.25 s a password here
+
+
+def bcrypt_hash(password: str, rounds: int = DEFAULT_ROUNDS) -> bytes:
+    """The hash FirstUseAuthenticator stores and checks (bcrypt, a new salt)."""
+    import bcrypt  # the hub's venv has it (FirstUseAuthenticator's dependency)
+    return bcrypt.hashpw(password.encode("utf8"), bcrypt.gensalt(rounds))
+
+
+def seed(dbm_path: str, users: classlist.ClassList, sheet_path: str,
+         rounds: int = DEFAULT_ROUNDS, make: Callable[[], str] = generate) -> List[Tuple[str, str]]:
+    """Give every user of `users` who has no password in `dbm_path` an initial one, and add a line
+    for each to the sheet at `sheet_path`. The (user, password) pairs given, in class-list order."""
+    import dbm  # the implementation FirstUseAuthenticator's dbm.open picks in the same interpreter
+    given: List[Tuple[str, str]] = []
+    with dbm.open(dbm_path, "c", 0o600) as db:
+        for name in users.roles:  # the class list's order
+            if db.get(name.encode("utf8")) is None:
+                password = make()
+                db[name.encode("utf8")] = bcrypt_hash(password, rounds)
+                given.append((name, password))
+    if given:
+        _append(sheet_path, [(name, users.roles[name], password) for name, password in given])
+    return given
+
+
+def _append(sheet_path: str, rows: Sequence[Tuple[str, str, str]]) -> None:
+    new = not os.path.exists(sheet_path)
+    fd = os.open(sheet_path, os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o600)
+    os.fchmod(fd, 0o600)
+    with os.fdopen(fd, "a", newline="") as out:
+        writer = csv.writer(out)
+        if new:
+            writer.writerow(SHEET_HEADER)
+        writer.writerows(rows)
+
+
+def read_sheet(sheet_path: str) -> Dict[str, str]:
+    """user -> the last initial password the sheet gives them (a reset adds a newer line)."""
+    found: Dict[str, str] = {}
+    with open(sheet_path, newline="") as sheet:
+        for row in csv.DictReader(sheet):
+            found[row["username"]] = row["initial_password"]
+    return found
+
+
+def sheet_of(data_dir: str) -> str:
+    """The hand-out sheet of the hub whose data folder is `data_dir`."""
+    return os.path.join(data_dir, SHEET_NAME)

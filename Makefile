@@ -12,7 +12,7 @@ HAVE_SOLUTIONS := $(wildcard $(ROOT)/solutions/*/package.xml)
 ROSENV := source $(WS)/devel/setup.bash &&
 REFENV := source $(if $(HAVE_SOLUTIONS),$(SOLUTIONS_WS),$(WS))/devel/setup.bash &&
 
-.PHONY: deps build demo lab jupyter hub hub-grade hub-check test flake-hunt unit rostest grade autograder bench bench-grade docker-check autograder-check clean
+.PHONY: deps build demo lab jupyter hub hub-password hub-grade hub-check test flake-hunt unit rostest grade autograder bench bench-grade docker-check autograder-check clean
 
 deps:
 	@bash $(ROOT)/tools/deps.sh
@@ -81,6 +81,13 @@ hub:
 	@COURSE_HUB=1 bash $(ROOT)/tools/deps.sh
 	@$(HUB_ENV) /usr/bin/python3 $(ROOT)/src/course_hub/scripts/hub --config $(ROOT)/deploy/jupyterhub/jupyterhub_config.py \
 	  --jupyterhub $(ROOT)/.venv-hub/bin/jupyterhub
+
+# The hand-out sheet of initial passwords, $(HUB_DATA)/initial-passwords.csv (the hub's start fills it for
+# users without a password). RESET=alice gives alice a new one at once, while the hub runs or not.
+hub-password:
+	@COURSE_HUB=1 bash $(ROOT)/tools/deps.sh
+	@$(ROOT)/.venv-hub/bin/python $(ROOT)/src/course_hub/scripts/hub_passwords --data '$(HUB_DATA)' \
+	  --class-list '$(abspath $(HUB_CLASS_LIST))' $(foreach u,$(RESET),--reset $(u))
 
 # At a deadline: every student's catkin_ws/src snapshotted read-only, graded as a class (the gradebook
 # keyed by hub user), each report copied into its student's ~/grades. MILESTONES="chatter ..." as for autograder.

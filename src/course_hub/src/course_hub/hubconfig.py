@@ -8,8 +8,8 @@ calls `apply(c, settings)`. What it sets up, and why:
   Passwords: FirstUseAuthenticator, with every listed user given an initial password when the hub
   starts (course_hub.passwords: its hash in the authenticator's file, the password on the sheet
   `<data>/initial-passwords.csv` the instructor hands out), so nobody can claim a classmate's
-  name by logging in first; `/hub/auth/change-password` changes it, and an admin's reset is
-  deleting the entry and restarting the hub (docs/hub.md).
+  name by logging in first; `/hub/auth/change-password` changes it, and `make hub-password
+  RESET=<user>` is an admin's reset (docs/hub.md).
 - **Each student a container** of the student image (DockerSpawner, through the engine's Docker
   API: podman's `system service` here), running `make jupyter`, which becomes
   `jupyterhub-singleuser` under a hub (course_workbench.startup). The container is removed when the
@@ -190,7 +190,7 @@ def apply(c: Any, settings: HubSettings) -> classlist.ClassList:
 
     c.JupyterHub.authenticator_class = "firstuseauthenticator.FirstUseAuthenticator"
     c.FirstUseAuthenticator.create_users = False
-    c.FirstUseAuthenticator.dbm_path = os.path.join(data, "passwords.dbm")
+    c.FirstUseAuthenticator.dbm_path = os.path.join(data, passwords.DBM_NAME)
     given = passwords.seed(c.FirstUseAuthenticator.dbm_path, users, passwords.sheet_of(data), settings.password_rounds)
     if given:
         print("course hub: initial passwords for %d user(s) (%s) added to %s: hand them out"

@@ -7,18 +7,22 @@ initial one: its bcrypt hash goes into the authenticator's own password file (th
 in the format it writes: the user name's UTF-8 bytes -> `bcrypt.hashpw(password, gensalt())`),
 and the password itself onto the hand-out sheet, `<data>/initial-passwords.csv` (root's, 0600),
 which the instructor hands out. A student changes it at `/hub/auth/change-password`; a user who
-already has a password (theirs, or an initial one) is never given another.
+already has a password (theirs, or an initial one) is never given another, except by a reset
+(`make hub-password RESET=<user>`: a new one in the same step).
 """
 from __future__ import annotations
 
+import argparse
 import csv
 import os
 import secrets
-from typing import Callable, Dict, List, Sequence, Tuple
+import sys
+from typing import Callable, Dict, List, Optional, Sequence, Tuple
 
 from course_hub import classlist
 
 SHEET_NAME = "initial-passwords.csv"
+DBM_NAME = "passwords.dbm"  # FirstUseAuthenticator's dbm_path in the hub's data folder (hubconfig)
 SHEET_HEADER = ("username", "role", "initial_password")
 # No look-alikes (0/o, 1/l/i): read off a sheet and typed by hand.
 ALPHABET = "abcdefghjkmnpqrstuvwxyz23456789"
@@ -56,6 +60,23 @@ def seed(dbm_path: str, users: classlist.ClassList, sheet_path: str,
     return given
 
 
+def reset(dbm_path: str, users: classlist.ClassList, sheet_path: str, names: Sequence[str],
+          rounds: int = DEFAULT_ROUNDS, make: Callable[[], str] = generate) -> List[Tuple[str, str]]:
+    """A new initial password for each of `names` (listed users), in place of whatever password
+    they had, added to the sheet: one step, so the name is never without a password (while the
+    hub runs: the authenticator reads the file at every login). ValueError for a name off the list."""
+    import dbm
+    unknown = [name for name in names if name not in users.roles]
+    if unknown:
+        raise ValueError("not on the class list: %s" % ", ".join(unknown))
+    given = [(name, make()) for name in names]
+    with dbm.open(dbm_path, "c", 0o600) as db:
+        for name, password in given:
+            db[name.encode("utf8")] = bcrypt_hash(password, rounds)
+    _append(sheet_path, [(name, users.roles[name], password) for name, password in given])
+    return given
+
+
 def _append(sheet_path: str, rows: Sequence[Tuple[str, str, str]]) -> None:
     new = not os.path.exists(sheet_path)
     fd = os.open(sheet_path, os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o600)
@@ -79,3 +100,33 @@ def read_sheet(sheet_path: str) -> Dict[str, str]:
 def sheet_of(data_dir: str) -> str:
     """The hand-out sheet of the hub whose data folder is `data_dir`."""
     return os.path.join(data_dir, SHEET_NAME)
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    """`make hub-password RESET=alice`: a new initial password for a user, while the hub runs or
+    not; without --reset, the initial passwords the hub's start would give (users without one)."""
+    parser = argparse.ArgumentParser(description=main.__doc__)
+    parser.add_argument("--data", required=True, help="the hub's data folder (make hub's HUB_DATA)")
+    parser.add_argument("--class-list", required=True, help="the class list CSV (HUB_CLASS_LIST)")
+    parser.add_argument("--reset", action="append", default=[], metavar="USER", help="give USER a new initial password")
+    opts = parser.parse_args(argv)
+    try:
+        users = classlist.load(opts.class_list)
+    except classlist.ClassListError as err:
+        print("hub passwords: %s" % err, file=sys.stderr)
+        return 2
+    os.makedirs(opts.data, mode=0o700, exist_ok=True)
+    dbm_path, sheet = os.path.join(opts.data, DBM_NAME), sheet_of(opts.data)
+    if opts.reset:
+        try:
+            given = reset(dbm_path, users, sheet, opts.reset)
+        except ValueError as err:
+            print("hub passwords: %s" % err, file=sys.stderr)
+            return 2
+        for name, password in given:
+            print("%s: new initial password %s (also on %s)" % (name, password, sheet))
+        return 0
+    given = seed(dbm_path, users, sheet)
+    print("hub passwords: %d new initial password(s)%s on %s" % (
+        len(given), " (%s)" % ", ".join(name for name, _ in given) if given else "", sheet))
+    return 0

@@ -8,6 +8,7 @@ import random
 import stat
 
 import bcrypt
+import pytest
 from hypothesis import given, strategies as st
 
 from course_hub import classlist, passwords
@@ -64,3 +65,28 @@ def test_passwords_are_three_groups_of_four_without_look_alikes(seed):
     assert [len(g) for g in groups] == [4, 4, 4]
     assert not set("".join(groups)) - set(passwords.ALPHABET)
     assert not set("0o1li") & set(passwords.ALPHABET)
+
+
+def test_a_reset_replaces_the_password_at_once_and_refuses_a_name_off_the_list(tmp_path):
+    db, sheet, first = seeded(tmp_path)
+    ((name, new),) = passwords.reset(db, CLASS, sheet, ["alice"], rounds=4)
+    assert name == "alice" and new != dict(first)["alice"]
+    with dbm.open(db, "r") as stored:
+        assert bcrypt.checkpw(new.encode(), stored[b"alice"])
+        assert not bcrypt.checkpw(dict(first)["alice"].encode(), stored[b"alice"])
+    assert passwords.read_sheet(sheet)["alice"] == new
+    with pytest.raises(ValueError, match="mallory"):
+        passwords.reset(db, CLASS, sheet, ["mallory"], rounds=4)
+
+
+def test_the_command_seeds_then_resets_and_says_so(tmp_path, capsys):
+    roster = tmp_path / "class.csv"
+    roster.write_text("username,role\ntom,ta\nalice\n")
+    data = tmp_path / "data"
+    assert passwords.main(["--data", str(data), "--class-list", str(roster)]) == 0
+    assert "2 new initial password(s) (tom, alice)" in capsys.readouterr().out
+    assert passwords.main(["--data", str(data), "--class-list", str(roster), "--reset", "alice"]) == 0
+    said = capsys.readouterr().out
+    assert said.startswith("alice: new initial password ") and passwords.read_sheet(passwords.sheet_of(str(data)))["alice"] in said
+    assert passwords.main(["--data", str(data), "--class-list", str(roster), "--reset", "bob"]) == 2
+    assert "not on the class list: bob" in capsys.readouterr().err

@@ -38,6 +38,7 @@ ROSDEP_KEYS = {
     "selenium": "python3-selenium",
     "tornado": "python3-tornado",
     "PIL": "python3-pil",
+    "bcrypt": "python3-bcrypt",
 }
 # ROS packages whose Python module has the package's name (Debian's ROS, or ours).
 ROS_MODULES = {"rospy", "rosgraph", "roslib", "roslaunch", "rostest", "rosnode", "rosservice",

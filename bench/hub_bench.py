@@ -109,8 +109,8 @@ class LabPage:
 
 
 class Student:
-    def __init__(self, hub: LocalHub, name: str) -> None:
-        self.user = HubUser(hub.url, name, passwords.read_sheet(passwords.sheet_of(str(hub.data)))[name])
+    def __init__(self, hub: LocalHub, name: str, password: str) -> None:
+        self.user = HubUser(hub.url, name, password)
         self.user.login()
         self.spawn_s = self.user.start()
         status, url = self.user.open_server()  # JupyterLab's page: the hub's OAuth, the server's cookies
@@ -206,9 +206,10 @@ def main() -> int:
     try:
         hub.start()
         print("hub_bench: hub at %s, image %s, load average %s" % (hub.url, opts.image, load()), flush=True)
+        handed_out = passwords.handed_out(str(hub.data))  # the initial password the hub gave each student
         while len(students) < opts.max:
             for name in names[len(students):len(students) + opts.step]:
-                students.append(Student(hub, name))
+                students.append(Student(hub, name, handed_out[name]))
                 if len(students) == 1:
                     print("hub_bench: spawn of one server (nothing else running): %.1f s" % students[0].spawn_s,
                           flush=True)

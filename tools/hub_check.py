@@ -54,6 +54,7 @@ from podman_check import PODMAN, network_mounts  # noqa: E402
 
 from course_hub import passwords as hub_passwords  # noqa: E402
 from course_testkit.hub import HubUser, LocalHub, SpawnFailed  # noqa: E402
+from course_testkit.jupyter import Terminal  # noqa: E402
 from course_testkit.waiting import wait_for  # noqa: E402
 
 STUDENTS = ("alice", "bob", "carol")
@@ -157,7 +158,7 @@ def run(opts: argparse.Namespace) -> int:
             print(hub.tail())
             return finish(report, started)
         # the initial passwords the hub gave the class list at its start (its hand-out sheet)
-        passwords.update(hub_passwords.read_sheet(hub_passwords.sheet_of(str(hub.data))))
+        passwords.update(hub_passwords.handed_out(str(hub.data)))
         for name in STUDENTS + (TA,):
             users[name] = HubUser(hub.url, name, passwords[name])
 
@@ -231,8 +232,6 @@ def run(opts: argparse.Namespace) -> int:
             term = as_bob.request("POST", "/api/terminals")[0]
             assert rest >= 400 and term >= 400, ("REST", rest, "terminals", term)
             try:
-                as_bob.websocket_request("/terminals/websocket/1")
-                from course_testkit.jupyter import Terminal
                 Terminal(as_bob, "1").close()
             except Exception:
                 pass

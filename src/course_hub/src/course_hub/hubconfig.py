@@ -190,11 +190,12 @@ def apply(c: Any, settings: HubSettings) -> classlist.ClassList:
 
     c.JupyterHub.authenticator_class = "firstuseauthenticator.FirstUseAuthenticator"
     c.FirstUseAuthenticator.create_users = False
-    c.FirstUseAuthenticator.dbm_path = os.path.join(data, passwords.DBM_NAME)
-    given = passwords.seed(c.FirstUseAuthenticator.dbm_path, users, passwords.sheet_of(data), settings.password_rounds)
+    c.FirstUseAuthenticator.dbm_path = passwords.dbm_of(data)
+    sheet = passwords.sheet_of(data)
+    given = passwords.seed(c.FirstUseAuthenticator.dbm_path, users, sheet, settings.password_rounds)
     if given:
         print("course hub: initial passwords for %d user(s) (%s) added to %s: hand them out"
-              % (len(given), ", ".join(name for name, _ in given), passwords.sheet_of(data)), file=sys.stderr)
+              % (len(given), ", ".join(name for name, _ in given), sheet), file=sys.stderr)
     c.Authenticator.allowed_users = set(users.users)
     c.Authenticator.admin_users = set(users.admins)
 

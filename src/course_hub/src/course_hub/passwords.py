@@ -22,19 +22,17 @@ from typing import Callable, Dict, List, Optional, Sequence, Tuple
 from course_hub import classlist
 
 SHEET_NAME = "initial-passwords.csv"
-DBM_NAME = "passwords.dbm"  # FirstUseAuthenticator's dbm_path in the hub's data folder (hubconfig)
+DBM_NAME = "passwords.dbm"  # FirstUseAuthenticator's dbm_path in the hub's data folder
 SHEET_HEADER = ("username", "role", "initial_password")
 # No look-alikes (0/o, 1/l/i): read off a sheet and typed by hand.
 ALPHABET = "abcdefghjkmnpqrstuvwxyz23456789"
 GROUPS, GROUP_LENGTH = 3, 4  # "kq7m-3tzp-x9aw": 31^12, about 2^59
+DEFAULT_ROUNDS = 12  # bcrypt's cost, as FirstUseAuthenticator hashes: about 0.25 s a password here
 
 
 def generate(choice: Callable[[str], str] = secrets.choice) -> str:
     """A new initial password: three groups of four characters, dash-joined."""
     return "-".join("".join(choice(ALPHABET) for _ in range(GROUP_LENGTH)) for _ in range(GROUPS))
-
-
-DEFAULT_ROUNDS = 12  # bcrypt's cost, as FirstUseAuthenticator hashes: about 0.25 s a password here
 
 
 def bcrypt_hash(password: str, rounds: int = DEFAULT_ROUNDS) -> bytes:
@@ -48,16 +46,9 @@ def seed(dbm_path: str, users: classlist.ClassList, sheet_path: str,
     """Give every user of `users` who has no password in `dbm_path` an initial one, and add a line
     for each to the sheet at `sheet_path`. The (user, password) pairs given, in class-list order."""
     import dbm  # the implementation FirstUseAuthenticator's dbm.open picks in the same interpreter
-    given: List[Tuple[str, str]] = []
     with dbm.open(dbm_path, "c", 0o600) as db:
-        for name in users.roles:  # the class list's order
-            if db.get(name.encode("utf8")) is None:
-                password = make()
-                db[name.encode("utf8")] = bcrypt_hash(password, rounds)
-                given.append((name, password))
-    if given:
-        _append(sheet_path, [(name, users.roles[name], password) for name, password in given])
-    return given
+        without = [name for name in users.roles if db.get(name.encode("utf8")) is None]  # the list's order
+    return _give(dbm_path, users, sheet_path, without, rounds, make)
 
 
 def reset(dbm_path: str, users: classlist.ClassList, sheet_path: str, names: Sequence[str],
@@ -65,11 +56,19 @@ def reset(dbm_path: str, users: classlist.ClassList, sheet_path: str, names: Seq
     """A new initial password for each of `names` (listed users), in place of whatever password
     they had, added to the sheet: one step, so the name is never without a password (while the
     hub runs: the authenticator reads the file at every login). ValueError for a name off the list."""
-    import dbm
     unknown = [name for name in names if name not in users.roles]
     if unknown:
         raise ValueError("not on the class list: %s" % ", ".join(unknown))
+    return _give(dbm_path, users, sheet_path, names, rounds, make)
+
+
+def _give(dbm_path: str, users: classlist.ClassList, sheet_path: str, names: Sequence[str],
+          rounds: int, make: Callable[[], str]) -> List[Tuple[str, str]]:
+    """A new password for each of `names`: its hash into the password file, a line on the sheet."""
+    import dbm
     given = [(name, make()) for name in names]
+    if not given:
+        return given
     with dbm.open(dbm_path, "c", 0o600) as db:
         for name, password in given:
             db[name.encode("utf8")] = bcrypt_hash(password, rounds)
@@ -102,6 +101,16 @@ def sheet_of(data_dir: str) -> str:
     return os.path.join(data_dir, SHEET_NAME)
 
 
+def dbm_of(data_dir: str) -> str:
+    """FirstUseAuthenticator's password file of the hub whose data folder is `data_dir`."""
+    return os.path.join(data_dir, DBM_NAME)
+
+
+def handed_out(data_dir: str) -> Dict[str, str]:
+    """user -> their initial password, off the sheet of the hub whose data folder is `data_dir`."""
+    return read_sheet(sheet_of(data_dir))
+
+
 def main(argv: Optional[Sequence[str]] = None) -> int:
     """`make hub-password RESET=alice`: a new initial password for a user, while the hub runs or
     not; without --reset, the initial passwords the hub's start would give (users without one)."""
@@ -116,7 +125,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         print("hub passwords: %s" % err, file=sys.stderr)
         return 2
     os.makedirs(opts.data, mode=0o700, exist_ok=True)
-    dbm_path, sheet = os.path.join(opts.data, DBM_NAME), sheet_of(opts.data)
+    dbm_path, sheet = dbm_of(opts.data), sheet_of(opts.data)
     if opts.reset:
         try:
             given = reset(dbm_path, users, sheet, opts.reset)

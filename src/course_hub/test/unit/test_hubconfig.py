@@ -41,7 +41,7 @@ def test_accounts_come_from_the_class_list_and_tas_are_admins(tmp_path):
     assert c.FirstUseAuthenticator.create_users is False
     assert c.FirstUseAuthenticator.dbm_path.startswith(str(tmp_path / "data"))
     # nobody can claim a listed name by logging in first: each has an initial password already
-    assert set(passwords.read_sheet(passwords.sheet_of(str(tmp_path / "data")))) == {"alice", "bob", "tom"}
+    assert set(passwords.handed_out(str(tmp_path / "data"))) == {"alice", "bob", "tom"}
 
 
 def test_each_student_a_container_with_limits_their_src_kept_and_grades_read_only(tmp_path):

@@ -78,9 +78,7 @@ class JupyterSession:
         `/desktop-websockify/`): the VNC server's protocol version (b"RFB 003.008\\n"), which
         arrives only once the proxy has started the X session's VNC server."""
         async def greet() -> bytes:
-            request = self.websocket_request("/desktop-websockify/")
-            request.connect_timeout = timeout
-            socket = await websocket_connect(request)
+            socket = await connect(self.websocket_request("/desktop-websockify/"), timeout)
             try:
                 message = await asyncio.wait_for(socket.read_message(), timeout)
             finally:
@@ -123,6 +121,12 @@ class JupyterServer(JupyterSession):
             return err.code, err.read(), dict(err.headers)
 
 
+async def connect(request: HTTPRequest, timeout: float = REQUEST_TIMEOUT_S) -> Any:
+    """A websocket to a session's `websocket_request`, its handshake given `timeout` seconds."""
+    request.connect_timeout = timeout
+    return await websocket_connect(request)
+
+
 def refused_websocket(url: str) -> Optional[int]:
     """The HTTP status that refused the websocket handshake at `url` (-1: refused without one;
     None: it was accepted)."""
@@ -158,7 +162,7 @@ class Terminal:
         self.thread = threading.Thread(target=self.loop.run_forever, name="terminal-%s" % name, daemon=True)
         self.thread.start()
         self.pending = ""
-        self.socket = self._call(self._connect(server.websocket_request("/terminals/websocket/%s" % name)),
+        self.socket = self._call(connect(server.websocket_request("/terminals/websocket/%s" % name)),
                                  REQUEST_TIMEOUT_S)
 
     def _call(self, coroutine: Any, timeout: float) -> Any:
@@ -179,11 +183,6 @@ class Terminal:
         typed = text.rfind(mark, 0, found.start())
         start = text.find("\n", typed) + 1 if typed >= 0 else 0
         return int(found.group(1)), text[start:found.start()]
-
-    @staticmethod
-    async def _connect(request: HTTPRequest):
-        request.connect_timeout = REQUEST_TIMEOUT_S
-        return await websocket_connect(request)
 
     async def _send(self, message: list) -> None:
         await self.socket.write_message(json.dumps(message))

@@ -11,6 +11,9 @@ start-up's own exit code. The container must still be there to be asked, so it i
 by the engine when it exits (`auto_remove` off, course_hub.hubconfig); DockerSpawner removes it
 when the server stops.
 
+Its container is named by course_hub.names, like the user's network and folders (the hooks of
+course_hub.hubconfig set those).
+
 It also waits, in `start`, until the server accepts connections on its port or its container
 stops: a server that dies while starting fails the spawn with that sentence, which the student
 reads on the spawn page (JupyterHub's own wait for the server's HTTP answer was seen taking a
@@ -23,7 +26,9 @@ import time
 from typing import Any, Optional, Tuple
 
 from dockerspawner import DockerSpawner
+from traitlets import default
 
+from course_hub import names
 from course_hub.hubconfig import exit_reason
 
 CONNECT_TIMEOUT_S = 2.0
@@ -31,6 +36,12 @@ LOOK_EVERY_S = 0.5
 
 
 class CourseSpawner(DockerSpawner):
+    @default("object_name")
+    def _object_name_default(self) -> str:
+        """The container's name from course_hub.names, as every other place of the user is named
+        (DockerSpawner's own template would escape the name its own way)."""
+        return names.container(self.user.name)
+
     async def poll(self) -> Optional[Any]:
         status = await super().poll()
         if status is None or status == 0:

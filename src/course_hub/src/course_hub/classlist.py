@@ -8,21 +8,22 @@ course's own use and ignored here:
     alice,student,Alice A.
     tom,ta,Tom the TA
 
-A user name becomes the name of the student's container, network and folders, and part of
-URLs, so it must be short, lower case and plain: a letter, then letters, digits, `-` or `_`, at
-most 32 characters (JupyterHub lower-cases what a user types at the login, so `Alice` logs in as
-`alice`). Any other line is refused with its line number: a class list with one bad line does
-not half-load.
+A user name becomes the name of the student's container, network, folders and web address
+(course_hub.names), so it must be short, lower case and plain: a letter, then letters, digits and
+single `-` or `_` between them, at most 32 characters (JupyterHub lower-cases what a user types at
+the login, so `Alice` logs in as `alice`). `_` and `-` are one on the host (`jean_luc` lives in
+`users/jean-luc`), so a list naming both `jean_luc` and `jean-luc` is refused at the second. Any
+other line is refused with its line number: a class list with one bad line does not half-load.
 """
 from __future__ import annotations
 
 import csv
 import io
-import re
 from dataclasses import dataclass, field
 from typing import Dict, FrozenSet, List
 
-USERNAME = re.compile(r"^[a-z][a-z0-9_-]{0,31}$")
+from course_hub import names
+
 ROLES = ("student", "ta")
 DEFAULT_ROLE = "student"
 
@@ -56,6 +57,7 @@ def parse(text: str, source: str = "class list") -> ClassList:
     rows = csv.reader(io.StringIO(text.lstrip("\ufeff")))
     header: List[str] = []
     roles: Dict[str, str] = {}
+    slugs: Dict[str, str] = {}
     for row in rows:
         line = rows.line_num
         if not any(cell.strip() for cell in row) or row[0].lstrip().startswith("#"):
@@ -69,14 +71,22 @@ def parse(text: str, source: str = "class list") -> ClassList:
         cells = dict(zip(header, (cell.strip() for cell in row)))
         name = cells.get("username", "")
         role = (cells.get("role") or DEFAULT_ROLE).lower()
-        if not USERNAME.match(name):
+        try:
+            word = names.slug(name)
+        except ValueError:
             raise ClassListError("%s line %d: %r is no user name the hub can use (lower case: a letter, then "
-                                 "letters, digits, - or _, at most 32)" % (source, line, name))
+                                 "letters, digits and single - or _ between them, at most 32)"
+                                 % (source, line, name)) from None
         if role not in ROLES:
             raise ClassListError("%s line %d: role %r of %s must be one of %s" % (
                 source, line, role, name, ", ".join(ROLES)))
         if name in roles:
             raise ClassListError("%s line %d: %s is listed twice" % (source, line, name))
+        if word in slugs:
+            raise ClassListError("%s line %d: %s and %s would share one folder and one address (users/%s): "
+                                 "- and _ are one on the hub; give one of them another name"
+                                 % (source, line, slugs[word], name, word))
+        slugs[word] = name
         roles[name] = role
     if not roles:
         raise ClassListError("%s: no user in it (a header line `username,role`, then one line per user)" % source)

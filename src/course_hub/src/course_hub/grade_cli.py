@@ -10,18 +10,30 @@
    their ~/grades/<stamp>/ (read-only in their workbench); the class's gradebook.csv and
    report.html stay with the TAs.
 
-Exit code: the grader's (0 when it graded everyone), 2 on a bad class list or data folder.
+A student whose folder cannot be copied (it changed under the copy, or holds more than a
+snapshot's bounds, course_hub.grading) is not graded: the others are, the gradebook gives that
+student a row of empty cells, `not-graded.csv` beside it and the summary printed here say why,
+and the student's ~/grades/<stamp>/report.txt says so too.
+
+Every snapshot and every grading's output is root's alone once the grading is done: a later
+grading's student code (the sandbox's user) cannot read them (course_hub.hubconfig.data_modes).
+
+Exit code: the grader's (0 when it graded everyone), 1 when some student was not graded, 2 on a
+bad class list or data folder.
 """
 from __future__ import annotations
 
 import argparse
+import csv
 import datetime
 import os
 import subprocess
 import sys
-from typing import List, Optional, Sequence
+from typing import Dict, List, Optional, Sequence
 
-from course_hub import classlist, grading
+from course_hub import classlist, grading, hubconfig
+
+NOT_GRADED = "not-graded.csv"
 
 
 def parse(argv: Sequence[str]) -> argparse.Namespace:
@@ -55,19 +67,55 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         print("hub_grade: %s holds no users/ folder: is it the hub's data folder?" % args.data, file=sys.stderr)
         return 2
     stamp = args.stamp or datetime.datetime.now(datetime.timezone.utc).strftime("%Y%m%dT%H%M%SZ")
+    for folder, mode in hubconfig.data_modes(args.data).items():
+        os.makedirs(folder, mode=mode, exist_ok=True)
+        os.chmod(folder, mode)
     class_dir = os.path.join(args.data, "snapshots", stamp)
     out = args.out or os.path.join(args.data, "grades", stamp)
-    os.makedirs(os.path.dirname(class_dir), mode=0o755, exist_ok=True)
     if os.path.exists(class_dir):
         print("hub_grade: the snapshot %s exists already: pick another --stamp" % class_dir, file=sys.stderr)
         return 2
     counts = grading.snapshot(args.data, class_dir, students)
+    not_graded = {user: count.error for user, count in counts.items() if count.error}
     for user, count in counts.items():
+        if count.error:
+            print("hub_grade: NOT GRADED %s: %s" % (user, count.error), flush=True)
+            continue
         skipped = " (%d special files left out)" % len(count.skipped) if count.skipped else ""
         print("hub_grade: snapshot %s: %d files%s" % (user, count.files, skipped), flush=True)
-    print("hub_grade: snapshot of %d students, read-only, in %s" % (len(counts), class_dir), flush=True)
+    print("hub_grade: snapshot of %d students, read-only, in %s" % (len(counts) - len(not_graded), class_dir),
+          flush=True)
+    os.makedirs(out, mode=0o711, exist_ok=True)
     done = subprocess.run(grade_command(class_dir, out, args.only, args.jobs), check=False)
-    written = grading.publish(out, args.data, students, stamp)
+    record_not_graded(out, not_graded)
+    written = grading.publish(out, args.data, students, stamp, not_graded)
+    os.chmod(out, 0o700)  # done: no later grading's student code reads it
+    failed = {user: where for user, where in written.items() if where.startswith("not written")}
+    for user, where in failed.items():
+        print("hub_grade: %s's report %s" % (user, where), flush=True)
     print("hub_grade: reports copied to %d students' ~/grades/%s; the gradebook: %s" % (
-        len(written), stamp, os.path.join(out, "gradebook.csv")), flush=True)
-    return done.returncode
+        len(written) - len(failed), stamp, os.path.join(out, "gradebook.csv")), flush=True)
+    if not_graded:
+        print("hub_grade: %d student(s) NOT GRADED (%s): see %s" % (
+            len(not_graded), ", ".join(sorted(not_graded)), os.path.join(out, NOT_GRADED)), flush=True)
+    return done.returncode or (1 if not_graded else 0)
+
+
+def record_not_graded(out: str, not_graded: Dict[str, str]) -> None:
+    """`not-graded.csv` (user, reason) and a row of empty cells per such user in the gradebook."""
+    if not not_graded:
+        return
+    with open(os.path.join(out, NOT_GRADED), "w", newline="") as stream:
+        writer = csv.writer(stream)
+        writer.writerow(["student", "reason"])
+        writer.writerows(sorted(not_graded.items()))
+    gradebook = os.path.join(out, "gradebook.csv")
+    header: List[str] = ["student", "total", "max"]
+    if os.path.exists(gradebook):
+        with open(gradebook, newline="") as stream:
+            header = next(csv.reader(stream), header)
+    with open(gradebook, "a", newline="") as stream:
+        writer = csv.writer(stream)
+        if not os.path.getsize(gradebook):
+            writer.writerow(header)
+        writer.writerows([user] + [""] * (len(header) - 1) for user in sorted(not_graded))

@@ -42,9 +42,8 @@ from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional
 from urllib.parse import urlparse
 
-from course_hub import classlist, passwords
+from course_hub import classlist, disks, names, passwords
 
-NAME_PREFIX = "course-hub-"            # containers course-hub-<user>, networks course-hub-net-<user>
 STUDENT_HOME = "/home/student"         # the student image's user (docker/Dockerfile)
 SRC_IN_CONTAINER = STUDENT_HOME + "/catkin_ws/src"
 GRADES_IN_CONTAINER = STUDENT_HOME + "/grades"
@@ -68,44 +67,23 @@ class HubSettings:
     cpu_limit: float = 1.0
     pids_limit: int = 1024
     idle_timeout_s: int = 3600
+    max_age_s: int = 12 * 3600                      # a server running this long is stopped, active or not
     cull_every_s: int = 300
+    disk_limit: str = "1G"                          # each student's disk (course_hub.disks), reserved
+    home_limit: str = "512M"                        # the container's writable home and /tmp (memory)
     start_timeout_s: int = 180
     student_uid: int = 1000                         # `student` in the image: owns the folders it writes
     proxy_command: List[str] = field(default_factory=list)  # configurable-http-proxy (make hub's npm prefix)
     password_rounds: int = passwords.DEFAULT_ROUNDS  # bcrypt's cost for the initial passwords
 
 
-def network_name(user: str) -> str:
-    return "%snet-%s" % (NAME_PREFIX, user)
-
-
-def user_folders(data_dir: str, user: str) -> Dict[str, str]:
-    """The host's folders of `user`: `src` (their catkin_ws/src) and `grades` (their reports)."""
-    base = os.path.join(data_dir, "users", user)
-    return {"src": os.path.join(base, "src"), "grades": os.path.join(base, "grades")}
-
-
-def ensure_user_folders(data_dir: str, user: str, uid: int) -> Dict[str, str]:
-    """Create `user`'s folders if missing: src owned by the image's student (uid), grades readable
-    by them and writable by the hub (root) only. Modes are set explicitly: the hub runs with
-    umask 077 (course_hub.runner)."""
-    folders = user_folders(data_dir, user)
-    if not os.path.isdir(folders["src"]):
-        os.makedirs(folders["src"])
-        os.chown(folders["src"], uid, uid)
-        os.chmod(folders["src"], 0o755)
-    os.makedirs(folders["grades"], exist_ok=True)
-    os.chmod(folders["grades"], 0o755)
-    return folders
-
-
-def ensure_network(client: Any, user: str) -> str:
-    """The gateway address of `user`'s network, made now if missing (`client`: docker's APIClient)."""
-    name = network_name(user)
+def ensure_network(client: Any, place: names.Places) -> str:
+    """The gateway address of the user's network, made now if missing (`client`: docker's APIClient)."""
+    name = place.network
     found = [n for n in client.networks(names=[name]) if n.get("Name") == name]
     if not found:
         # internal: no route off the bridge (no default route in the container, no NAT)
-        client.create_network(name, driver="bridge", internal=True, labels={"course-hub.user": user})
+        client.create_network(name, driver="bridge", internal=True, labels={"course-hub.user": place.user})
     info = client.inspect_network(name)
     for config in (info.get("IPAM") or {}).get("Config") or []:
         if config.get("Gateway"):
@@ -113,29 +91,41 @@ def ensure_network(client: Any, user: str) -> str:
     raise RuntimeError("the network %s has no gateway address: the container could not reach the hub" % name)
 
 
-def remove_network(client: Any, user: str) -> None:
+def remove_network(client: Any, place: names.Places) -> None:
     try:
-        client.remove_network(network_name(user))
+        client.remove_network(place.network)
     except Exception:  # gone already, or still in use by a container being removed: made again at the next spawn
         pass
 
 
+def mounts(place: names.Places) -> Dict[str, Dict[str, str]]:
+    """DockerSpawner's `volumes` and `read_only_volumes` of the user: their src and grades."""
+    return {"volumes": {place.src: SRC_IN_CONTAINER}, "read_only_volumes": {place.grades: GRADES_IN_CONTAINER}}
+
+
 def make_hooks(settings: HubSettings):
-    """The spawner's pre-spawn and post-stop hooks (folders and network of the user). They are
-    coroutines: the engine's API calls run in a thread, as DockerSpawner's own do, so a slow
-    engine never stalls the hub's event loop (every other user's page)."""
+    """The spawner's pre-spawn and post-stop hooks (disk, folders and network of the user, all
+    named by course_hub.names). They are coroutines: the disk and the engine's API calls run in a
+    thread, as DockerSpawner's own calls do, so a slow engine never stalls the hub's event loop
+    (every other user's page)."""
+    disk_size = disks.size_bytes(settings.disk_limit)
 
     def prepare(spawner: Any) -> str:
-        ensure_user_folders(settings.data_dir, spawner.user.name, settings.student_uid)
-        return ensure_network(spawner.client, spawner.user.name)
+        place = names.places(settings.data_dir, spawner.user.name)
+        disks.ensure(place, disk_size, settings.student_uid)
+        return ensure_network(spawner.client, place)
 
     async def pre_spawn(spawner: Any) -> None:
+        place = names.places(settings.data_dir, spawner.user.name)
         gateway = await asyncio.get_running_loop().run_in_executor(None, prepare, spawner)
-        spawner.network_name = network_name(spawner.user.name)
+        spawner.network_name = place.network
+        for trait, value in mounts(place).items():
+            setattr(spawner, trait, value)
         spawner.hub_connect_url = "http://%s:%d" % (gateway, urlparse(spawner.hub.api_url).port)
 
     async def post_stop(spawner: Any) -> None:
-        await asyncio.get_running_loop().run_in_executor(None, remove_network, spawner.client, spawner.user.name)
+        place = names.places(settings.data_dir, spawner.user.name)
+        await asyncio.get_running_loop().run_in_executor(None, remove_network, spawner.client, place)
 
     return pre_spawn, post_stop
 
@@ -164,9 +154,40 @@ def _bytes(value: Optional[str]) -> str:
 
 
 def culler_service(settings: HubSettings, python: Optional[str] = None) -> Dict[str, Any]:
+    """jupyterhub-idle-culler as a service: idle servers stopped, and any server older than
+    `max_age_s` (a server's own token can report activity, so idleness alone is not enough)."""
     return {"name": CULLER_SERVICE,
             "command": [python or sys.executable, "-m", "jupyterhub_idle_culler",
-                        "--timeout=%d" % settings.idle_timeout_s, "--cull-every=%d" % settings.cull_every_s]}
+                        "--timeout=%d" % settings.idle_timeout_s, "--max-age=%d" % settings.max_age_s,
+                        "--cull-every=%d" % settings.cull_every_s]}
+
+
+def data_modes(data: str) -> Dict[str, int]:
+    """The data folder's layout and modes. Root's alone: the students' disks and mount points, the
+    snapshots of every grading; the grader's sandbox user passes through `data` and `grades` to the
+    grading under way only (course_hub.grade_cli closes each grading's folder when it is done). The
+    hub's own files (database, cookie secret, passwords) are 0600 in `data`."""
+    return {data: 0o711, os.path.join(data, "users"): 0o700, os.path.join(data, "disks"): 0o700,
+            os.path.join(data, "snapshots"): 0o700, os.path.join(data, "grades"): 0o711}
+
+
+def host_config(settings: HubSettings) -> Dict[str, Any]:
+    """The engine's settings of every student container (docker-py's create_host_config).
+
+    - processes bounded (`pids_limit`);
+    - no new privileges and no capabilities: nothing in the container can become root;
+    - the image read-only (the course under /course included); what the workbench writes goes to
+      the home folder and /tmp, each a tmpfs of `home_limit` counted in the memory limit, so the
+      container's writable part is bounded too; catkin_ws/src is on the student's own disk;
+    - `auto_remove` off: a container that exits stays until the server is stopped, so that the
+      spawner can say why it exited (course_spawner); DockerSpawner removes it then (remove=True).
+    """
+    tmpfs = "size=%s,mode=%s,nosuid,nodev"
+    return {"pids_limit": settings.pids_limit, "auto_remove": False,
+            "security_opt": ["no-new-privileges"], "cap_drop": ["ALL"], "read_only": True,
+            "tmpfs": {STUDENT_HOME: tmpfs % (settings.home_limit, "0755") + ",uid=%d,gid=%d" % (
+                settings.student_uid, settings.student_uid),
+                      "/tmp": tmpfs % (settings.home_limit, "1777")}}
 
 
 CULLER_SCOPES = ["list:users", "read:users:activity", "read:servers", "delete:servers"]
@@ -178,7 +199,9 @@ def apply(c: Any, settings: HubSettings) -> classlist.ClassList:
     data = settings.data_dir
     os.makedirs(data, mode=0o700, exist_ok=True)
 
-    os.chmod(data, 0o711)  # the grader's sandbox user passes through to the grades (secrets are 0600)
+    for folder, mode in data_modes(data).items():
+        os.makedirs(folder, mode=mode, exist_ok=True)
+        os.chmod(folder, mode)
     c.JupyterHub.bind_url = settings.bind_url
     c.JupyterHub.hub_ip = "0.0.0.0"  # the containers call it through their networks' gateways
     c.JupyterHub.hub_port = settings.hub_port
@@ -188,8 +211,11 @@ def apply(c: Any, settings: HubSettings) -> classlist.ClassList:
     if settings.proxy_command:
         c.ConfigurableHTTPProxy.command = list(settings.proxy_command)
 
-    c.JupyterHub.authenticator_class = "firstuseauthenticator.FirstUseAuthenticator"
+    # FirstUseAuthenticator's password file, checked off the event loop, failed logins limited,
+    # nobody off the class list (course_hub.auth)
+    c.JupyterHub.authenticator_class = "course_hub.auth.CourseAuthenticator"
     c.FirstUseAuthenticator.create_users = False
+    c.Authenticator.allow_existing_users = False
     c.FirstUseAuthenticator.dbm_path = passwords.dbm_of(data)
     sheet = passwords.sheet_of(data)
     given = passwords.seed(c.FirstUseAuthenticator.dbm_path, users, sheet, settings.password_rounds)
@@ -204,16 +230,12 @@ def apply(c: Any, settings: HubSettings) -> classlist.ClassList:
     c.DockerSpawner.image = settings.image
     c.DockerSpawner.pull_policy = "never"  # no registry: the image is built on this machine
     c.DockerSpawner.cmd = list(SINGLEUSER_COMMAND)
-    c.DockerSpawner.name_template = NAME_PREFIX + "{username}"
     c.DockerSpawner.remove = True
     c.DockerSpawner.use_internal_ip = True
-    c.DockerSpawner.volumes = {user_folders(data, "{username}")["src"]: SRC_IN_CONTAINER}
-    c.DockerSpawner.read_only_volumes = {user_folders(data, "{username}")["grades"]: GRADES_IN_CONTAINER}
+    # the container's name, network and mounts come from course_hub.names (the spawner, the hooks)
     c.DockerSpawner.mem_limit = settings.mem_limit
     c.DockerSpawner.cpu_limit = settings.cpu_limit
-    # auto_remove off: a container that exits stays until the server is stopped, so that the
-    # spawner can say why it exited (course_spawner); DockerSpawner removes it then (remove=True)
-    c.DockerSpawner.extra_host_config = {"pids_limit": settings.pids_limit, "auto_remove": False}
+    c.DockerSpawner.extra_host_config = host_config(settings)
     pre_spawn, post_stop = make_hooks(settings)
     c.DockerSpawner.pre_spawn_hook = pre_spawn
     c.DockerSpawner.post_stop_hook = post_stop

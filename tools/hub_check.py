@@ -36,6 +36,7 @@ import argparse
 import csv
 import json
 import os
+import re
 import secrets
 import shutil
 import signal
@@ -45,19 +46,30 @@ import sys
 import tempfile
 import time
 import traceback
+import urllib.parse
+import urllib.request
 from pathlib import Path
 from typing import Callable, Dict, List, Optional
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tools"))
-from podman_check import PODMAN, network_mounts  # noqa: E402
+from podman_check import PODMAN as BUILD_PODMAN, network_mounts  # noqa: E402
 
+from course_hub import names as hub_names  # noqa: E402
+from course_hub.runner import PODMAN  # noqa: E402  (the hub's own podman: its networks)
 from course_hub import passwords as hub_passwords  # noqa: E402
+from course_testkit.browser import chromium  # noqa: E402
 from course_testkit.hub import HubUser, LocalHub, SpawnFailed  # noqa: E402
 from course_testkit.jupyter import Terminal  # noqa: E402
 from course_testkit.waiting import wait_for  # noqa: E402
 
 STUDENTS = ("alice", "bob", "carol")
+# names that once shared folders (DockerSpawner escaped - as -2d, the hooks did not): each must
+# save into their own src and be graded on it; a-b also races the snapshot, a-2db hands in a
+# sparse file, jean-luc fills their disk
+NAMED = ("a-b", "a-2db", "jean-luc")
+RACER, SPARSE, FILLER = NAMED
+EVIL_PORT = 8765
 FAILING = "dave"        # a student whose server cannot start (a memory limit too small)
 TA = "tom"
 TOO_LITTLE_MEMORY = "8M"  # JupyterLab cannot answer in it (24M sometimes did, then died)
@@ -69,6 +81,34 @@ FILES = {"alice": SAMPLES / "lab2_chatter_scripts" / "lab2" / "src" / "chatter",
 CHECK_CONFIG = '''course_limit = c.DockerSpawner.mem_limit
 c.DockerSpawner.mem_limit = lambda spawner: %(small)r if spawner.user.name == %(failing)r else course_limit
 ''' % {"small": TOO_LITTLE_MEMORY, "failing": FAILING}
+
+
+# A page a student serves from her own server (any file behind jupyter-server-proxy's /proxy/<port>/):
+# it tries, with the cookies of whoever opens it, to read the hub's API, to make alice an admin,
+# to read a hub page's XSRF token in a frame and to make a token with it. Its findings go to its
+# title. On the hub's own origin (no subdomains) every one of them works.
+EVIL_PAGE = """<!doctype html><title>waiting</title><script>
+(async () => {
+  const hub = "%(hub)s", out = [];
+  try { const r = await fetch(hub + "/hub/api/users", {credentials: "include"});
+        out.push("read:" + r.status); } catch (e) { out.push("read-blocked"); }
+  try { const r = await fetch(hub + "/hub/api/users/alice", {method: "PATCH", credentials: "include",
+          headers: {"Content-Type": "application/json"}, body: JSON.stringify({admin: true})});
+        out.push("patch:" + r.status); } catch (e) { out.push("patch-blocked"); }
+  try { await fetch(hub + "/hub/api/users/alice", {method: "PATCH", mode: "no-cors", credentials: "include",
+          body: JSON.stringify({admin: true})}); out.push("blind-patch-sent"); } catch (e) { out.push("blind-blocked"); }
+  try { const frame = document.createElement("iframe");
+        const loaded = new Promise(r => { frame.onload = r; setTimeout(r, 5000); });
+        frame.src = hub + "/hub/token"; document.body.appendChild(frame); await loaded;
+        const html = frame.contentDocument.documentElement.innerHTML;
+        out.push("frame-read");
+        const xsrf = (html.match(/xsrf[^"']*["']:?\s*["']([^"']+)/) || ["", ""])[1];
+        const r = await fetch(hub + "/hub/api/users/tom/tokens", {method: "POST", credentials: "include",
+          headers: {"X-XSRFToken": xsrf}, body: "{}"});
+        out.push("token:" + r.status); } catch (e) { out.push("frame-blocked"); }
+  document.title = "done " + out.join(" ");
+})();
+</script>"""
 
 
 class Report:
@@ -99,7 +139,7 @@ def build_image(image: str, log: Path) -> None:
     scratch = Path(tempfile.mkdtemp(prefix="hub-check-build-"))
     try:
         with open(log, "ab") as out:
-            subprocess.run(["nice", "-n", "10"] + PODMAN + ["build", "--network", "host", *network_mounts(scratch),
+            subprocess.run(["nice", "-n", "10"] + BUILD_PODMAN + ["build", "--network", "host", *network_mounts(scratch),
                            "-f", str(ROOT / "docker" / "Dockerfile"), "-t", image, str(ROOT)],
                            check=True, stdout=out, stderr=subprocess.STDOUT)
     finally:
@@ -149,7 +189,7 @@ def run(opts: argparse.Namespace) -> int:
     if not opts.no_build:
         report.attempt("image %s built from docker/Dockerfile" % opts.image,
                        lambda: (build_image(opts.image, work / "build.log"), "log in %s" % (work / "build.log"))[1])
-    hub = LocalHub(opts.image, work, STUDENTS + (FAILING,), (TA,), CHECK_CONFIG)
+    hub = LocalHub(opts.image, work, STUDENTS + NAMED + (FAILING,), (TA,), CHECK_CONFIG)
     users: Dict[str, HubUser] = {}
     terms: Dict[str, object] = {}
     passwords: Dict[str, str] = {}
@@ -159,11 +199,11 @@ def run(opts: argparse.Namespace) -> int:
             return finish(report, started)
         # the initial passwords the hub gave the class list at its start (its hand-out sheet)
         passwords.update(hub_passwords.handed_out(str(hub.data)))
-        for name in STUDENTS + (TA,):
+        for name in STUDENTS + NAMED + (TA,):
             users[name] = HubUser(hub.url, name, passwords[name])
 
         def logins() -> str:
-            assert sorted(passwords) == sorted(STUDENTS + (FAILING, TA)), sorted(passwords)
+            assert sorted(passwords) == sorted(STUDENTS + NAMED + (FAILING, TA)), sorted(passwords)
             # before anyone logged in: a classmate cannot claim alice's name with a password of their own
             claim = HubUser(hub.url, "alice", secrets.token_urlsafe(12))
             wrong = HubUser(hub.url, "alice", "not-" + passwords["alice"])
@@ -176,8 +216,8 @@ def run(opts: argparse.Namespace) -> int:
                 raise AssertionError("%s logged in with a password that is not theirs" % intruder.name)
             for user in users.values():
                 user.login()
-            return ("%d users on the hand-out sheet; 4 log in with theirs; claiming a listed name first, a wrong "
-                    "password and a name off the list refused" % len(passwords))
+            return ("%d users on the hand-out sheet; %d log in with theirs; claiming a listed name first, a wrong "
+                    "password and a name off the list refused" % (len(passwords), len(users)))
         report.attempt("each user logs in through the hub's form (xsrf, cookies)", logins)
 
         spawn_times: Dict[str, float] = {}
@@ -189,6 +229,31 @@ def run(opts: argparse.Namespace) -> int:
                 assert status == 200 and "/user/%s/lab" % name in url, (name, status, url)
             return ", ".join("%s %.1f s" % kv for kv in spawn_times.items())
         report.attempt("each student starts their server and opens JupyterLab through the hub", spawns)
+
+        def own_origin() -> str:
+            origins = {name: users[name].origins.get(name, "") for name in STUDENTS}
+            hub_host = urllib.parse.urlparse(hub.url).netloc
+            for name, origin in origins.items():
+                assert origin == "http://%s.%s" % (name, hub_host), (name, origin)
+            return "servers at %s; the hub at %s" % (", ".join(origins.values()), hub.url)
+        report.attempt("each student's server has its own origin (subdomain)", own_origin)
+
+        def names_apart() -> str:
+            said = []
+            for name in NAMED:
+                users[name].start()
+                status, url = users[name].open_server()
+                assert status == 200, (name, status, url)
+                users[name].write_file("catkin_ws/src/owner.txt", name)
+            for name in NAMED:
+                status, data, _ = users[name].request("GET", "/api/contents/catkin_ws/src/owner.txt")
+                owner = json.loads(data).get("content") if status == 200 else None
+                assert owner == name, "%s reads %r in their own src" % (name, owner)
+                host = hub.data / "users" / hub_names.slug(name) / "src" / "owner.txt"
+                assert host.read_text() == name, (name, host)
+                said.append("%s in users/%s" % (name, hub_names.slug(name)))
+            return "each saved into their own src and reads only it: %s" % ", ".join(said)
+        report.attempt("a-b, a-2db and jean-luc each save in a folder of their own", names_apart)
 
         def turtlesims() -> str:
             for name in STUDENTS:
@@ -223,6 +288,37 @@ def run(opts: argparse.Namespace) -> int:
             return "alice's turtlesim ended; bob's still publishes /turtle1/pose"
         report.attempt("alice's pkill -f turtlesim leaves bob's turtlesim running", pkill)
 
+        def hardened() -> str:
+            code, said = terms["alice"].run(
+                "touch /course/x 2>&1; grep -E '^(NoNewPrivs|CapEff|CapPrm)' /proc/self/status; "
+                "df -h --output=size,target ~/catkin_ws/src /tmp ~ | tail -n +2")
+            assert "Read-only file system" in said, said
+            assert re.search(r"NoNewPrivs:\s+1", said) and re.search(r"CapEff:\s+0+\b", said), said
+            return " | ".join(line.strip() for line in said.splitlines() if line.strip())
+        report.attempt("a student's container: the course read-only, no new privileges, no capabilities", hardened)
+
+        def disk_bound() -> str:
+            filler = users[FILLER]
+            free_before = shutil.disk_usage(hub.data).free
+            with filler.terminal() as term:
+                code, src = term.run("head -c 3G /dev/zero > ~/catkin_ws/src/fill; echo exit=$?")
+                code, tmp = term.run("head -c 3G /dev/zero > /tmp/fill; echo exit=$?")
+                code, home = term.run("du -sh ~/catkin_ws/src/fill /tmp/fill")
+            assert "No space left on device" in src and "No space left on device" in tmp, (src, tmp)
+            grew = free_before - shutil.disk_usage(hub.data).free
+            assert grew < 64 * 2 ** 20, "the host's disk lost %d MiB" % (grew // 2 ** 20)
+            filler.stop()
+            assert wait_for(lambda: not filler.server_state(), 120, 1.0), "a-2db's server did not stop"
+            seconds = filler.start()  # a full disk: the workbench still starts
+            status, url = filler.open_server()
+            assert status == 200, (status, url)
+            with filler.terminal() as term:
+                term.run("rm -f ~/catkin_ws/src/fill")
+            return ("%s: No space left on device in catkin_ws/src and /tmp (%s); the host's disk lost %d MiB; "
+                    "the workbench started again with the disk full in %.1f s" % (
+                        FILLER, " ".join(home.split()), grew // 2 ** 20, seconds))
+        report.attempt("a student's disk is bounded by the kernel; the workbench still starts at the limit", disk_bound)
+
         def no_way_to_bob() -> str:
             alice = users["alice"]
             status, url = alice.open_server("bob")
@@ -231,13 +327,18 @@ def run(opts: argparse.Namespace) -> int:
             rest = as_bob.request("GET", "/api/contents/")[0]
             term = as_bob.request("POST", "/api/terminals")[0]
             assert rest >= 400 and term >= 400, ("REST", rest, "terminals", term)
+            # and at bob's own origin, straight
+            bob_origin = users["bob"].origins["bob"]
+            direct = alice.http("GET", bob_origin + "/user/bob/api/contents/")
+            assert direct[0] >= 400 or "/user/bob/api" not in direct[2], ("bob's origin", direct[0], direct[2])
             try:
                 Terminal(as_bob, "1").close()
             except Exception:
                 pass
             else:
                 raise AssertionError("alice opened bob's terminal websocket")
-            return "bob's lab %d, REST %d, new terminal %d, terminal websocket refused" % (status, rest, term)
+            return "bob's lab %d, REST %d, new terminal %d, terminal websocket refused; at %s: %d" % (
+                status, rest, term, bob_origin, direct[0])
         report.attempt("alice cannot reach bob's server or terminals through the hub", no_way_to_bob)
 
         def no_port_of_bob() -> str:
@@ -261,6 +362,43 @@ def run(opts: argparse.Namespace) -> int:
             return "tom opened /user/bob/lab and a terminal there: %s" % " ".join(said.split())
         report.attempt("the TA (admin) reaches bob's server and terminal", admin)
 
+        def hostile_page() -> str:
+            hub_host = urllib.parse.urlparse(hub.url).netloc
+            alice = users["alice"]
+            alice.make_folder("www")
+            alice.write_file("www/evil.html", EVIL_PAGE % {"hub": hub.url})
+            code, said = terms["alice"].run("(cd ~/www && python3 -m http.server %d --bind 127.0.0.1 > /dev/null 2>&1 &)"
+                                            % EVIL_PORT)
+            page = "%s/user/alice/proxy/%d/evil.html" % (alice.origins["alice"], EVIL_PORT)
+            tom = users[TA]
+            status, tokens_before = tom.hub_api("GET", "/users/%s/tokens" % TA)
+            with chromium() as browser:
+                browser.get(hub.url + "/hub/login")
+                browser.find_element("name", "username").send_keys(TA)
+                browser.find_element("name", "password").send_keys(passwords[TA])
+                browser.find_element("id", "login_submit").click()
+                assert wait_for(lambda: "/hub/login" not in browser.current_url, 30, 0.2), browser.current_url
+                browser.get(hub.url + "/user/alice/lab")  # the TA opens alice's server to help her
+                if "/oauth2/authorize" in browser.current_url:
+                    browser.find_element("css selector", "form input[type=submit], form button").click()
+                assert wait_for(lambda: "alice.%s" % hub_host in browser.current_url, 60, 0.2), browser.current_url
+                browser.get(page)
+                assert wait_for(lambda: browser.title.startswith("done"), 60, 0.5), browser.page_source[:500]
+                seen = browser.title
+            status, alice_model = tom.hub_api("GET", "/users/alice")
+            assert status == 200 and not alice_model.get("admin"), ("alice became admin", seen)
+            status, tokens_after = tom.hub_api("GET", "/users/%s/tokens" % TA)
+
+            def own_tokens(model: Dict) -> List[str]:  # not the OAuth tokens opening servers makes
+                return [t["id"] for t in (model or {}).get("api_tokens", []) if not t.get("oauth_client")]
+            made = set(own_tokens(tokens_after)) - set(own_tokens(tokens_before))
+            assert not made, ("a token was made for tom", seen, made)
+            for word in ("read:200", "patch:200", "frame-read", "token:"):
+                assert word not in seen, seen
+            return "alice's page at %s, opened by the TA: %s; alice is no admin, tom has no new token" % (
+                page.split("/user/")[0], seen[5:])
+        report.attempt("a page alice serves, opened by a TA, cannot act on the hub", hostile_page)
+
         def failed_start() -> str:
             dave = HubUser(hub.url, FAILING, passwords[FAILING])
             dave.login()
@@ -283,7 +421,10 @@ def run(opts: argparse.Namespace) -> int:
                 counts[name] = upload(users[name], folder, "catkin_ws/src/chatter")
             code, said = terms["alice"].run("chmod +x ~/catkin_ws/src/chatter/scripts/*.py && ls -l ~/catkin_ws/src/chatter/scripts")
             assert code == 0, said
-            return "uploaded %s; alice did chmod +x" % counts
+            with users[SPARSE].terminal() as term:  # costs jean-luc nothing: a hole of 16 GiB
+                code, said = term.run("truncate -s 16G ~/catkin_ws/src/big.bin && du -h --apparent-size ~/catkin_ws/src/big.bin")
+            assert code == 0, said
+            return "uploaded %s; alice did chmod +x; %s made a sparse file of %s" % (counts, SPARSE, said.split()[0])
         report.attempt("alice and bob write their chatter package in the workbench", files)
 
         for term in terms.values():
@@ -297,11 +438,11 @@ def run(opts: argparse.Namespace) -> int:
                 env=dict(os.environ, JUPYTERHUB_API_TOKEN=hub.culler_token), stdout=subprocess.DEVNULL,
                 stderr=subprocess.STDOUT, start_new_session=True)
             try:
-                gone = wait_for(lambda: not any(users[n].server_state() for n in STUDENTS), 120, 1.0)
+                gone = wait_for(lambda: not any(users[n].server_state() for n in STUDENTS + NAMED), 120, 1.0)
             finally:
                 os.killpg(culler.pid, signal.SIGTERM)
                 culler.wait(30)
-            assert gone, "still running: %s" % [n for n in STUDENTS if users[n].server_state()]
+            assert gone, "still running: %s" % [n for n in STUDENTS + NAMED if users[n].server_state()]
             assert not podman_out("ps", "-q", "--filter", "name=course-hub-alice"), "alice's container is still there"
             seconds = users["alice"].start()
             status, url = users["alice"].open_server()  # a new server: the hub's OAuth again
@@ -311,26 +452,90 @@ def run(opts: argparse.Namespace) -> int:
             with users["alice"].terminal() as term:
                 code, said = term.run("test -x ~/catkin_ws/src/chatter/scripts/talker_node.py && pgrep -f turtlesim_node")
             assert code != 0, "after the cull: %s" % said
-            return "all three culled (containers removed); alice back in %.1f s with her files, a fresh container" % seconds
+            return ("all %d culled (containers removed); alice back in %.1f s with her files, a fresh container"
+                    % (len(STUDENTS + NAMED), seconds))
         report.attempt("the idle culler stops idle servers; alice's files survive", culled)
 
         grades: Dict[str, Dict] = {}
 
         def grading() -> str:
-            done = subprocess.run(["rosrun", "course_hub", "hub_grade", "--data", str(hub.data), "--class-list",
-                                   str(hub.class_list), "--only", MILESTONE, "--stamp", "deadline"],
-                                  stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, check=False)
+            # a-b's terminal swaps a folder of her src with a link to the hub's data folder, in a
+            # tight loop, while root snapshots the class
+            racer = users[RACER]
+            racer.start()
+            racer.open_server()
+            race = racer.terminal()
+            # 400 files in the folder she swaps: the copy takes long enough for the loop to hit it
+            race.run("mkdir -p ~/catkin_ws/src/pkg && cd ~/catkin_ws/src && for i in $(seq 400); do echo $i > pkg/f$i; "
+                     "done && (timeout 600 bash -c 'n=0; while true; do "
+                     "ln -sfn %s pkg.link; mv -T pkg pkg.real; mv -T pkg.link pkg; mv -T pkg pkg.link; "
+                     "mv -T pkg.real pkg; n=$((n+1)); echo $n > /tmp/swaps; done' > /dev/null 2>&1 &)" % hub.data)
+            assert wait_for(lambda: race.run("cat /tmp/swaps 2>/dev/null")[1].strip().isdigit(), 30, 0.2), \
+                "a-b's swapping loop does not run"
+            try:
+                done = subprocess.run(["rosrun", "course_hub", "hub_grade", "--data", str(hub.data), "--class-list",
+                                       str(hub.class_list), "--only", MILESTONE, "--stamp", "deadline"],
+                                      stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, check=False)
+            finally:
+                swaps = race.run("pkill -f pkg.link; cat /tmp/swaps")[1].strip()
+                race.close()
             book = hub.data / "grades" / "deadline" / "gradebook.csv"
             assert book.is_file(), done.stdout[-2000:]
             with open(book) as rows:
                 for row in csv.DictReader(rows):
                     grades[row.get("student") or next(iter(row.values()))] = row
-            assert set(STUDENTS) <= set(grades), "gradebook rows: %s" % sorted(grades)
+            assert set(STUDENTS + NAMED) <= set(grades), "gradebook rows: %s" % sorted(grades)
             snap = hub.data / "snapshots" / "deadline" / "alice" / "chatter" / "package.xml"
             assert snap.is_file() and not os.access(snap, os.W_OK) or os.geteuid() == 0 and not snap.stat().st_mode & 0o222, \
                 "the snapshot is writable"
-            return "gradebook rows %s" % sorted(grades)
+            secrets_of_host = [p.read_bytes() for p in (hub.data / "jupyterhub_cookie_secret",
+                                                        hub.data / "initial-passwords.csv") if p.is_file()]
+            leaked = [str(p) for top in (hub.data / "snapshots", hub.data / "grades") for p in top.rglob("*")
+                      if p.is_file() and not p.is_symlink() and p.stat().st_size < 2 ** 20
+                      and any(secret and secret in p.read_bytes() for secret in secrets_of_host)]
+            assert not leaked, "host files in the snapshot or the grading: %s" % leaked
+            raced = "graded" if (hub.data / "snapshots" / "deadline" / RACER).is_dir() else "not graded"
+            return ("gradebook rows %s; %s swapped a folder for a link to the hub's data %s times while the snapshot "
+                    "ran: %s, no host file in any snapshot or output (exit %d)" % (
+                        sorted(grades), RACER, swaps, raced, done.returncode))
         report.attempt("hub_grade snapshots the class read-only and grades it, keyed by hub user", grading)
+
+        def named_and_bounded() -> str:
+            not_graded = {}
+            listing = hub.data / "grades" / "deadline" / "not-graded.csv"
+            if listing.is_file():
+                with open(listing) as rows:
+                    not_graded = {row["student"]: row["reason"] for row in csv.DictReader(rows)}
+            assert "more than 200 MB" in not_graded.get(SPARSE, ""), not_graded
+            report_txt = hub.data / "users" / hub_names.slug(SPARSE) / "grades" / "deadline" / "report.txt"
+            assert "Not graded" in report_txt.read_text(), report_txt
+            snaps = hub.data / "snapshots" / "deadline"
+            used = sum(p.lstat().st_blocks * 512 for top in (snaps, hub.data / "grades") for p in top.rglob("*"))
+            assert used < 256 * 2 ** 20, "snapshots and gradings take %d MiB" % (used // 2 ** 20)
+            owner = (snaps / FILLER / "owner.txt").read_text()
+            assert owner == FILLER, "%s's snapshot holds %r's owner.txt" % (FILLER, owner)
+            if RACER in not_graded:
+                assert "changed while it was copied" in not_graded[RACER], not_graded[RACER]
+            else:
+                assert (snaps / RACER / "owner.txt").read_text() == RACER
+            return "%s not graded (%s); %s graded on their own files; snapshots and gradings use %d MiB" % (
+                SPARSE, not_graded[SPARSE][:60], FILLER, used // 2 ** 20)
+        report.attempt("each named student graded on their own work; a sparse file refused with its reason",
+                       named_and_bounded)
+
+        def old_gradings_closed() -> str:
+            tried = []
+            for path in (hub.data / "snapshots" / "deadline" / "alice" / "chatter" / "package.xml",
+                         hub.data / "users" / "bob" / "src" / "chatter" / "package.xml",
+                         hub.data / "grades" / "deadline" / "alice" / "results.json",
+                         hub.data / "initial-passwords.csv"):
+                done = subprocess.run(["runuser", "-u", "coursesandbox", "--", "cat", str(path)],
+                                      stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+                assert done.returncode != 0 and "Permission denied" in done.stderr, (path, done.stderr)
+                tried.append(str(path.relative_to(hub.data)))
+            return "the grader's sandbox user is refused %s" % ", ".join(tried)
+        report.attempt("a later grading's student code reads no snapshot, grading or student folder",
+                       old_gradings_closed)
 
         def verdicts() -> str:
             results = {}
@@ -362,6 +567,67 @@ def run(opts: argparse.Namespace) -> int:
                 assert not (hub.data / "users" / "alice" / "grades" / "deadline" / other).exists(), other
             return "alice reads ~/grades/deadline/report.txt (PASS) in her workbench; read-only; no one else's"
         report.attempt("each student sees their own report, nobody another's", own_report)
+
+        def login_flood() -> str:
+            import threading
+            slowest = [0.0]
+            stop = threading.Event()
+
+            def probe() -> None:
+                while not stop.is_set():
+                    began = time.monotonic()
+                    urllib.request.urlopen(hub.url + "/hub/api/", timeout=30).read()
+                    slowest[0] = max(slowest[0], time.monotonic() - began)
+                    time.sleep(0.05)
+
+            def wrong(i: int) -> None:
+                try:
+                    HubUser(hub.url, TA, "wrong-%d" % i).login()
+                except Exception:
+                    pass
+            prober = threading.Thread(target=probe)
+            prober.start()
+            tries = []
+            began = time.monotonic()
+            for i in range(20):  # 20 wrong logins in 2 s
+                tries.append(threading.Thread(target=wrong, args=(i,)))
+                tries[-1].start()
+                time.sleep(0.1)
+            for thread in tries:
+                thread.join()
+            flood = time.monotonic() - began
+            time.sleep(0.5)
+            stop.set()
+            prober.join()
+            assert slowest[0] < 1.0, "/hub/api/ took %.2f s during the wrong logins" % slowest[0]
+            try:
+                HubUser(hub.url, TA, passwords[TA]).login()
+            except Exception as err:
+                refused = str(err)
+            else:
+                raise AssertionError("tom's right password let in right after 20 wrong ones")
+            assert "Too many failed logins" in refused, refused
+            status, _ = users[TA].hub_api("GET", "/users/%s" % TA)
+            assert status == 200, "tom's own session ended: %d" % status
+            return ("20 wrong logins in %.1f s: /hub/api/ answered within %.2f s at worst; then the right password "
+                    "refused: %s; tom's open session unaffected" % (flood, slowest[0], refused[-70:]))
+        report.attempt("wrong logins neither stall the hub nor go on unlimited", login_flood)
+
+        def removed_from_list() -> str:
+            hub.stop()
+            with open(hub.class_list) as rows:
+                kept = [line for line in rows if not line.startswith("bob,")]
+            hub.class_list.write_text("".join(kept))
+            hub.start()
+            try:
+                HubUser(hub.url, "bob", passwords["bob"]).login()
+            except Exception as err:
+                bob = str(err)
+            else:
+                raise AssertionError("bob, taken off the class list, still logs in")
+            HubUser(hub.url, "alice", passwords["alice"]).login()
+            return "the hub started again without bob on its list: bob refused (%s); alice logs in" % bob[-60:]
+        report.attempt("a student taken off the class list can no longer log in", removed_from_list)
     finally:
         for term in terms.values():
             try:
@@ -374,11 +640,16 @@ def run(opts: argparse.Namespace) -> int:
 
 
 def cleanup(work: Path, keep: bool) -> None:
-    """The check's containers and networks (the hub stops the servers; this makes sure), its data."""
+    """The check's containers and networks (the hub stops the servers; this makes sure), the
+    students' disks unmounted, its data."""
     for container in podman_out("ps", "-aq", "--filter", "name=course-hub-").split():
         podman_out("rm", "-f", container)
     for network in podman_out("network", "ls", "-q", "--filter", "name=course-hub-net-").split():
         podman_out("network", "rm", "-f", network)
+    with open("/proc/mounts") as mounts:
+        mounted = [line.split()[1] for line in mounts if line.split()[1].startswith(str(work) + "/")]
+    for point in sorted(mounted, reverse=True):
+        subprocess.run(["umount", point], check=False)
     if not keep:
         shutil.rmtree(work, ignore_errors=True)
     else:

@@ -18,38 +18,20 @@ loop as well, and keeps passwords in the hub's database, where the initial passw
 to be written instead; so the course keeps FirstUseAuthenticator's file and adds both here.
 
 Imported by JupyterHub (the hub's venv), never by the course's nodes or unit tests: the logic is
-in course_hub.logins and `check_password`, which need no JupyterHub.
+in course_hub.logins and course_hub.passwords.check_password, which need no JupyterHub.
 """
 from __future__ import annotations
 
 import asyncio
-import dbm
 import math
 from concurrent.futures import ThreadPoolExecutor
 from typing import Any, Dict, Optional
 
-import bcrypt
 from firstuseauthenticator import FirstUseAuthenticator
 from traitlets import Float, Integer, default
 
 from course_hub.logins import FailedLogins
-
-RIGHT, WRONG, TOO_SHORT = "right", "wrong", "too short"
-
-
-def check_password(dbm_path: str, name: str, password: str, min_length: int) -> str:
-    """FirstUseAuthenticator's check, as a function that may run in any thread: RIGHT, WRONG, or
-    TOO_SHORT (a first password under `min_length`; a first password long enough is stored)."""
-    key = name.encode("utf8")
-    with dbm.open(dbm_path, "c", 0o600) as db:
-        stored = db.get(key)
-        if stored is not None:
-            return RIGHT if bcrypt.checkpw(password.encode("utf8"), stored) else WRONG
-        if len(password) < min_length:
-            return TOO_SHORT
-        db[key] = bcrypt.hashpw(password.encode("utf8"), bcrypt.gensalt())
-        return RIGHT
-
+from course_hub.passwords import RIGHT, TOO_SHORT, check_password
 
 class CourseAuthenticator(FirstUseAuthenticator):
     """FirstUseAuthenticator, off the event loop and with failed logins limited."""

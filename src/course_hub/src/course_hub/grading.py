@@ -150,7 +150,7 @@ def user_src(data_dir: str, user: str) -> Optional[str]:
 def _reason(err: BaseException) -> str:
     if isinstance(err, SnapshotRefused):
         return str(err)
-    if isinstance(err, OSError) and err.errno in (errno.ELOOP, errno.ENOTDIR, errno.ENOENT):
+    if isinstance(err, OSError) and err.errno in (errno.ELOOP, errno.ENOTDIR, errno.ENOENT, errno.EINVAL):
         return ("your catkin_ws/src changed while it was copied (%s): a folder was moved or replaced by a link. "
                 "Leave it still at the deadline; ask your TA to grade you again" % os.strerror(err.errno))
     return "your catkin_ws/src could not be copied: %s" % err

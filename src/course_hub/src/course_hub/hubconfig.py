@@ -44,6 +44,10 @@ from urllib.parse import urlparse
 
 from course_hub import classlist, disks, names, passwords
 
+# The hub's name on one machine: a dotted name under .localhost (every name there is loopback, for
+# browsers and, with libnss-myhostname, for the machine's own programs), so that JupyterHub's
+# cookies for the hub and its subdomains have a domain browsers and cookie jars accept.
+LOCAL_DOMAIN = "hub.localhost"
 STUDENT_HOME = "/home/student"         # the student image's user (docker/Dockerfile)
 SRC_IN_CONTAINER = STUDENT_HOME + "/catkin_ws/src"
 GRADES_IN_CONTAINER = STUDENT_HOME + "/grades"
@@ -61,7 +65,11 @@ class HubSettings:
     class_list: str                                 # the CSV of users (course_hub.classlist)
     data_dir: str = "/var/lib/ros-course-hub"       # users' folders, the hub's database and secrets
     image: str = "localhost/ros-course"             # the student image (docker/Dockerfile's default target)
-    bind_url: str = "http://127.0.0.1:8000"         # where students open the hub (behind TLS for a real class)
+    bind_url: str = "http://127.0.0.1:8000"         # where the hub's proxy listens (behind TLS for a real class)
+    # Each student's server on its own origin, <slug>.<domain>: "auto" is http://hub.localhost:<port>
+    # when bind_url is on loopback (*.localhost is loopback); a class sets its public address,
+    # with wildcard DNS and a wildcard TLS certificate (docs/hub.md)
+    subdomain_host: str = "auto"
     hub_port: int = 8081                            # the hub's API, which the containers call (all addresses)
     mem_limit: str = "2G"
     cpu_limit: float = 1.0
@@ -162,6 +170,29 @@ def culler_service(settings: HubSettings, python: Optional[str] = None) -> Dict[
                         "--cull-every=%d" % settings.cull_every_s]}
 
 
+class HubConfigError(ValueError):
+    """The course's hub settings cannot make a safe hub; the message says what to set."""
+
+
+def public_host(settings: HubSettings) -> str:
+    """JupyterHub's `subdomain_host`: the hub's public address, under which each user's server has
+    a host of its own (course_hub.names.subdomain_hook)."""
+    if settings.subdomain_host != "auto":
+        if not urlparse(settings.subdomain_host).hostname:
+            raise HubConfigError("subdomain_host %r is no address: write the hub's public address, e.g. "
+                                 "https://hub.example.org" % settings.subdomain_host)
+        return settings.subdomain_host
+    bound = urlparse(settings.bind_url)
+    if bound.hostname in ("127.0.0.1", "localhost", "::1"):
+        default_port = 443 if bound.scheme == "https" else 80
+        return "%s://%s%s" % (bound.scheme, LOCAL_DOMAIN, "" if (bound.port or default_port) == default_port
+                                     else ":%d" % bound.port)
+    raise HubConfigError(
+        "the hub listens on %s, not on loopback: set subdomain_host to its public address (e.g. "
+        "https://hub.example.org), with wildcard DNS (*.hub.example.org) and a wildcard TLS certificate, "
+        "so that each student's server has its own origin (docs/hub.md)" % settings.bind_url)
+
+
 def data_modes(data: str) -> Dict[str, int]:
     """The data folder's layout and modes. Root's alone: the students' disks and mount points, the
     snapshots of every grading; the grader's sandbox user passes through `data` and `grades` to the
@@ -185,8 +216,9 @@ def host_config(settings: HubSettings) -> Dict[str, Any]:
     tmpfs = "size=%s,mode=%s,nosuid,nodev"
     return {"pids_limit": settings.pids_limit, "auto_remove": False,
             "security_opt": ["no-new-privileges"], "cap_drop": ["ALL"], "read_only": True,
-            "tmpfs": {STUDENT_HOME: tmpfs % (settings.home_limit, "0755") + ",uid=%d,gid=%d" % (
-                settings.student_uid, settings.student_uid),
+            # U: the home's tmpfs owned by the container's user (podman's option; the image's
+            # home is copied into it, as podman does for every tmpfs)
+            "tmpfs": {STUDENT_HOME: tmpfs % (settings.home_limit, "0755") + ",U",
                       "/tmp": tmpfs % (settings.home_limit, "1777")}}
 
 
@@ -203,6 +235,10 @@ def apply(c: Any, settings: HubSettings) -> classlist.ClassList:
         os.makedirs(folder, mode=mode, exist_ok=True)
         os.chmod(folder, mode)
     c.JupyterHub.bind_url = settings.bind_url
+    # every user's server on a host of its own: a page a student serves cannot act with the hub's
+    # cookies (a TA's, when the TA opens it)
+    c.JupyterHub.subdomain_host = public_host(settings)
+    c.JupyterHub.subdomain_hook = names.subdomain_hook
     c.JupyterHub.hub_ip = "0.0.0.0"  # the containers call it through their networks' gateways
     c.JupyterHub.hub_port = settings.hub_port
     c.JupyterHub.db_url = "sqlite:///" + os.path.join(data, "jupyterhub.sqlite")

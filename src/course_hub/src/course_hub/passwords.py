@@ -41,6 +41,26 @@ def bcrypt_hash(password: str, rounds: int = DEFAULT_ROUNDS) -> bytes:
     return bcrypt.hashpw(password.encode("utf8"), bcrypt.gensalt(rounds))
 
 
+RIGHT, WRONG, TOO_SHORT = "right", "wrong", "too short"
+
+
+def check_password(dbm_path: str, name: str, password: str, min_length: int = 0) -> str:
+    """FirstUseAuthenticator's check, as a function that may run in any thread (course_hub.auth
+    runs it beside the hub's event loop): RIGHT, WRONG, or TOO_SHORT (a first password under
+    `min_length`; a first password long enough is stored, as the authenticator does)."""
+    import bcrypt
+    import dbm
+    key = name.encode("utf8")
+    with dbm.open(dbm_path, "c", 0o600) as db:
+        stored = db.get(key)
+        if stored is not None:
+            return RIGHT if bcrypt.checkpw(password.encode("utf8"), stored) else WRONG
+        if len(password) < min_length:
+            return TOO_SHORT
+        db[key] = bcrypt.hashpw(password.encode("utf8"), bcrypt.gensalt())
+        return RIGHT
+
+
 def seed(dbm_path: str, users: classlist.ClassList, sheet_path: str,
          rounds: int = DEFAULT_ROUNDS, make: Callable[[], str] = generate) -> List[Tuple[str, str]]:
     """Give every user of `users` who has no password in `dbm_path` an initial one, and add a line

@@ -5,8 +5,9 @@
 
 DockerSpawner speaks the Docker API. When DOCKER_HOST names an engine that answers, the hub uses
 it; otherwise this starts podman's Docker-compatible service on a socket of the hub's own
-(`podman --runtime runc --cgroup-manager=cgroupfs system service --time=0 unix://SOCK`: the
-runtime and cgroup manager podman needs on this kind of machine, tools/podman_check.py) and
+(`podman --runtime runc --cgroup-manager=cgroupfs --network-backend netavark system service
+--time=0 unix://SOCK`: the runtime and cgroup manager podman needs on this kind of machine,
+tools/podman_check.py, and the network stack whose internal networks have a gateway) and
 stops it when the hub stops. JupyterHub stops the students' servers when it stops
 (their files stay in the hub's data folder).
 """
@@ -21,7 +22,9 @@ import sys
 import time
 from typing import Dict, List, Mapping, Optional, Sequence
 
-PODMAN = ["podman", "--runtime", "runc", "--cgroup-manager=cgroupfs"]
+# netavark, not CNI: podman installed without its recommends picks CNI, whose internal networks
+# have no gateway the containers could reach the hub on
+PODMAN = ["podman", "--runtime", "runc", "--cgroup-manager=cgroupfs", "--network-backend", "netavark"]
 DEFAULT_SOCKET = "/run/ros-course-hub/podman.sock"
 SOCKET_TIMEOUT_S = 120.0  # podman takes seconds to start, minutes on a loaded machine
 STOP_TIMEOUT_S = 60.0

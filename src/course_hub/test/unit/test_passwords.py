@@ -90,3 +90,15 @@ def test_the_command_seeds_then_resets_and_says_so(tmp_path, capsys):
     assert said.startswith("alice: new initial password ") and passwords.read_sheet(passwords.sheet_of(str(data)))["alice"] in said
     assert passwords.main(["--data", str(data), "--class-list", str(roster), "--reset", "bob"]) == 2
     assert "not on the class list: bob" in capsys.readouterr().err
+
+
+def test_the_check_run_beside_the_event_loop_accepts_the_sheets_password_and_nothing_else(tmp_path):
+    users = classlist.parse("username\nalice\n")
+    dbm_path, sheet = str(tmp_path / "passwords.dbm"), str(tmp_path / "sheet.csv")
+    ((_, given_password),) = passwords.seed(dbm_path, users, sheet, rounds=4)
+    assert passwords.check_password(dbm_path, "alice", given_password) == passwords.RIGHT
+    assert passwords.check_password(dbm_path, "alice", given_password + "x") == passwords.WRONG
+    # a name without a password: the first one is kept (FirstUseAuthenticator's rule), if long enough
+    assert passwords.check_password(dbm_path, "bob", "abc", min_length=7) == passwords.TOO_SHORT
+    assert passwords.check_password(dbm_path, "bob", "long-enough", min_length=7) == passwords.RIGHT
+    assert passwords.check_password(dbm_path, "bob", "another-one") == passwords.WRONG

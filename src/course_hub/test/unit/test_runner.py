@@ -9,10 +9,10 @@ def test_the_socket_of_a_unix_docker_host():
     assert runner.socket_path("tcp://10.0.0.1:2375") is None
 
 
-def test_podman_serves_the_docker_api_with_the_runtime_and_cgroups_this_machine_needs():
+def test_podman_serves_the_docker_api_with_the_runtime_cgroups_and_network_stack_this_machine_needs():
     command = runner.engine_command("/run/hub/podman.sock")
-    assert command[:4] == ["podman", "--runtime", "runc", "--cgroup-manager=cgroupfs"]
-    assert command[4:] == ["system", "service", "--time=0", "unix:///run/hub/podman.sock"]
+    assert command[:6] == ["podman", "--runtime", "runc", "--cgroup-manager=cgroupfs", "--network-backend", "netavark"]
+    assert command[6:] == ["system", "service", "--time=0", "unix:///run/hub/podman.sock"]
 
 
 def test_the_hub_runs_without_the_workspaces_python_path():

@@ -72,26 +72,41 @@ class HubUser(JupyterSession):
         self.jar = http.cookiejar.CookieJar()
         self.opener = urllib.request.build_opener(urllib.request.HTTPCookieProcessor(self.jar))
         self.last_progress: List[Dict[str, Any]] = []
+        # where each server lives: its own host under JupyterHub's subdomain_host, learnt from the
+        # hub's redirect when it is opened (open_server); the hub's own address until then
+        self.origins: Dict[str, str] = {}
 
     # --- the browser's plumbing ---------------------------------------------------------------
 
-    def cookie(self, name: str, path_prefix: str = "/") -> Optional[str]:
-        """The value of cookie `name` whose path is the longest one `path_prefix` starts with."""
-        found = [c for c in self.jar if c.name == name and path_prefix.startswith(c.path.rstrip("/") or "/")]
+    def _sent_to(self, cookie: http.cookiejar.Cookie, url: str) -> bool:
+        parts = urllib.parse.urlparse(url)
+        host = parts.hostname or ""
+        # a host-only cookie of a name without a dot is kept under <name>.local (RFC 2965's rule)
+        return cookie.domain.lstrip(".") in (host, host + ".local") and \
+            parts.path.startswith(cookie.path.rstrip("/") or "/")
+
+    def cookie(self, name: str, url: str) -> Optional[str]:
+        """The value of cookie `name` that a browser sends to `url` (the longest path first)."""
+        found = [c for c in self.jar if c.name == name and self._sent_to(c, url)]
         found.sort(key=lambda c: len(c.path), reverse=True)
         return found[0].value if found else None
 
-    def cookie_header(self, path: str) -> str:
-        return "; ".join("%s=%s" % (c.name, c.value) for c in self.jar if path.startswith(c.path.rstrip("/") or "/"))
+    def cookie_header(self, url: str) -> str:
+        return "; ".join("%s=%s" % (c.name, c.value) for c in self.jar if self._sent_to(c, url))
+
+    def url(self, path: str) -> str:
+        """A path on the hub's address; a full URL stays as it is."""
+        return path if path.startswith(("http://", "https://")) else self.hub_url + path
 
     def http(self, method: str, path: str, data: Optional[bytes] = None, headers: Optional[Dict[str, str]] = None,
              timeout: float = REQUEST_TIMEOUT_S) -> Tuple[int, bytes, str]:
-        """(status, body, final URL) of a request to the hub's `path`, redirects followed, cookies kept."""
+        """(status, body, final URL) of a request to the hub's `path` (or a full URL), redirects
+        followed, cookies kept."""
         headers = dict(headers or {})
-        xsrf = self.cookie("_xsrf", path.split("?")[0])
+        xsrf = self.cookie("_xsrf", self.url(path).split("?")[0])
         if xsrf and method != "GET":
             headers.setdefault("X-XSRFToken", xsrf)
-        request = urllib.request.Request(self.hub_url + path, data=data, method=method, headers=headers)
+        request = urllib.request.Request(self.url(path), data=data, method=method, headers=headers)
         try:
             with self.opener.open(request, timeout=timeout) as reply:
                 return reply.status, reply.read(), reply.geturl()
@@ -105,7 +120,7 @@ class HubUser(JupyterSession):
         if status != 200:
             raise JupyterError("GET /hub/login -> %d" % status)
         field = re.search(rb'name="_xsrf"\s+value="([^"]+)"', page)
-        xsrf = field.group(1).decode() if field else (self.cookie("_xsrf", "/hub/") or "")
+        xsrf = field.group(1).decode() if field else (self.cookie("_xsrf", self.url("/hub/")) or "")
         form = urllib.parse.urlencode({"username": self.name, "password": self.password, "_xsrf": xsrf}).encode()
         # as a browser that opened the hub's home page: the login leads back there (a plain
         # /hub/login leads to /hub/spawn, which starts the server: start() does that here)
@@ -116,7 +131,7 @@ class HubUser(JupyterSession):
 
     def hub_api(self, method: str, path: str, body: Any = None) -> Tuple[int, Any]:
         """(status, JSON or text) of /hub/api<path> with the login cookie and the XSRF header."""
-        xsrf = self.cookie("_xsrf", "/hub/") or ""
+        xsrf = self.cookie("_xsrf", self.url("/hub/")) or ""
         headers = {"X-XSRFToken": xsrf}
         data = None
         if body is not None:
@@ -138,6 +153,9 @@ class HubUser(JupyterSession):
         """Start the user's server and wait for the spawn's end; seconds it took. SpawnFailed
         with the hub's message when it failed."""
         began = time.monotonic()
+        # as a browser clicks Start on the home page it just loaded: that page's XSRF cookie (a
+        # request elsewhere, e.g. to another's /user/ path on the hub, may have replaced it)
+        self.http("GET", "/hub/home")
         status, answer = self.hub_api("POST", "/users/%s/server" % self.name)
         # 400: already running; 500: the spawn failed at once (its reason is in the progress
         # events, which the hub's spawn page shows)
@@ -151,7 +169,7 @@ class HubUser(JupyterSession):
 
     def progress(self, timeout: float) -> List[Dict[str, Any]]:
         """The spawn's progress events (server-sent events) up to the last."""
-        xsrf = self.cookie("_xsrf", "/hub/") or ""
+        xsrf = self.cookie("_xsrf", self.url("/hub/")) or ""
         request = urllib.request.Request(self.hub_url + "/hub/api/users/%s/server/progress" % self.name,
                                          headers={"Accept": "text/event-stream", "X-XSRFToken": xsrf})
         events: List[Dict[str, Any]] = []
@@ -173,19 +191,24 @@ class HubUser(JupyterSession):
         """GET /user/<owner>/lab as a browser: (status, final URL) after the hub's OAuth redirects.
         Opening another's server (an admin), the hub first asks to authorize the access: the form
         is sent as its Authorize button sends it."""
-        status, page, url = self.http("GET", "/user/%s/lab" % (owner or self.name))
+        owner = owner or self.name
+        status, page, url = self.http("GET", "/user/%s/lab" % owner)
         parsed = urllib.parse.urlparse(url)
         if status == 200 and parsed.path == "/hub/api/oauth2/authorize" and b'<form method="post"' in page:
             fields = re.findall(rb'<input type="hidden" name="([^"]+)" value="([^"]*)"', page)
             form = urllib.parse.urlencode([(k.decode(), v.decode()) for k, v in fields]).encode()
-            status, page, url = self.http("POST", "%s?%s" % (parsed.path, parsed.query), form,
+            status, page, url = self.http("POST", "%s://%s%s?%s" % (parsed.scheme, parsed.netloc, parsed.path,
+                                                                    parsed.query), form,
                                           {"Content-Type": "application/x-www-form-urlencoded"})
+        parsed = urllib.parse.urlparse(url)
+        if status == 200 and parsed.path.startswith("/user/%s/" % owner):
+            self.origins[owner] = "%s://%s" % (parsed.scheme, parsed.netloc)
         return status, url
 
     def as_session(self, owner: str) -> "HubUser":
         """This user, speaking to `owner`'s server (a TA helping a student)."""
         other = HubUser(self.hub_url, self.name, self.password)
-        other.jar, other.opener, other.server_owner = self.jar, self.opener, owner
+        other.jar, other.opener, other.server_owner, other.origins = self.jar, self.opener, owner, self.origins
         return other
 
     # --- JupyterSession: the server behind the hub ---------------------------------------------
@@ -193,20 +216,25 @@ class HubUser(JupyterSession):
     def prefix(self) -> str:
         return "/user/%s" % self.server_owner
 
+    def server_origin(self) -> str:
+        """scheme://host[:port] of the server spoken to: its own host under subdomains."""
+        return self.origins.get(self.server_owner, self.hub_url)
+
     def request(self, method: str, path: str, body: Any = None, token: Optional[str] = "",
                 follow: bool = True) -> Tuple[int, bytes, Dict[str, str]]:
         data, headers = None, {}
         if body is not None:
             data, headers["Content-Type"] = json.dumps(body).encode(), "application/json"
-        status, raw, _ = self.http(method, self.prefix() + path, data, headers)
+        status, raw, _ = self.http(method, self.server_origin() + self.prefix() + path, data, headers)
         return status, raw, {}
 
     def websocket_request(self, path: str) -> HTTPRequest:
-        full = self.prefix() + path
+        origin = self.server_origin()
+        full = origin + self.prefix() + path
         xsrf = self.cookie("_xsrf", full) or ""
-        url = self.hub_url.replace("http://", "ws://", 1).replace("https://", "wss://", 1) + full
+        url = full.replace("http://", "ws://", 1).replace("https://", "wss://", 1)
         return HTTPRequest(url + ("?_xsrf=%s" % urllib.parse.quote(xsrf) if xsrf else ""),
-                           headers={"Cookie": self.cookie_header(full), "Origin": self.hub_url})
+                           headers={"Cookie": self.cookie_header(full), "Origin": origin})
 
 
 def _text(raw: bytes) -> str:
@@ -223,7 +251,10 @@ class LocalHub:
         self.work = Path(work)
         self.data = self.work / "data"
         self.port = isolation.free_port()
-        self.url = "http://127.0.0.1:%d" % self.port
+        # the proxy listens on loopback; users open the hub as http://hub.localhost:PORT, their
+        # servers at http://<slug>.hub.localhost:PORT (the course's subdomain_host "auto")
+        self.bind_url = "http://127.0.0.1:%d" % self.port
+        self.url = "http://hub.localhost:%d" % self.port
         self.culler_token = secrets.token_hex(24)
         self.class_list = self.work / "classlist.csv"
         with open(self.class_list, "w", newline="") as out:
@@ -236,7 +267,7 @@ class LocalHub:
             "hub_port": isolation.free_port(), "proxy_api_port": isolation.free_port(),
             "culler_token": self.culler_token} + extra_config)
         self.env = dict(os.environ, HUB_DATA=str(self.data), HUB_CLASS_LIST=str(self.class_list), HUB_IMAGE=image,
-                        HUB_URL=self.url)
+                        HUB_URL=self.bind_url)
         self.env.pop("DOCKER_HOST", None)
         self.socket = "/run/ros-course-hub-local-%d/podman.sock" % os.getpid()
         self.log = self.work / "hub.log"

@@ -33,6 +33,7 @@ started is stopped and removed at the end (--keep leaves the data folder).
 from __future__ import annotations
 
 import argparse
+import contextlib
 import csv
 import json
 import os
@@ -189,7 +190,8 @@ def run(opts: argparse.Namespace) -> int:
     if not opts.no_build:
         report.attempt("image %s built from docker/Dockerfile" % opts.image,
                        lambda: (build_image(opts.image, work / "build.log"), "log in %s" % (work / "build.log"))[1])
-    hub = LocalHub(opts.image, work, STUDENTS + NAMED + (FAILING,), (TA,), CHECK_CONFIG)
+    extra = Path(opts.extra_config).read_text() if opts.extra_config else ""
+    hub = LocalHub(opts.image, work, STUDENTS + NAMED + (FAILING,), (TA,), CHECK_CONFIG + extra)
     users: Dict[str, HubUser] = {}
     terms: Dict[str, object] = {}
     passwords: Dict[str, str] = {}
@@ -628,6 +630,26 @@ def run(opts: argparse.Namespace) -> int:
             HubUser(hub.url, "alice", passwords["alice"]).login()
             return "the hub started again without bob on its list: bob refused (%s); alice logs in" % bob[-60:]
         report.attempt("a student taken off the class list can no longer log in", removed_from_list)
+
+        def api_port_closed() -> str:
+            listening = subprocess.run(["ss", "-Hltn", "sport = :%d" % hub.api_port], stdout=subprocess.PIPE,
+                                       text=True, check=False).stdout
+            assert "0.0.0.0:%d" % hub.api_port in listening, "the hub's API: %r" % listening
+            with test_host() as (host_ip, run_there):
+                other = subprocess.Popen(["python3", "-m", "http.server", str(EVIL_PORT), "--bind", "0.0.0.0"],
+                                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                try:
+                    assert wait_for(lambda: run_there(CONNECT % (host_ip, EVIL_PORT)) == 0, 20, 0.3), \
+                        "the test host reaches no port of this machine"
+                    reached = run_there(CONNECT % (host_ip, hub.api_port)) == 0
+                finally:
+                    other.terminate()
+                    other.wait()
+            assert not reached, "a host on the network reached the hub's API port %d" % hub.api_port
+            # and the containers still call it (their servers started and answer: the checks above)
+            return ("JupyterHub listens on 0.0.0.0:%d; a host on the network (a namespace of this check, at %s) "
+                    "reaches another port listening on every address, not the hub's API" % (hub.api_port, host_ip))
+        report.attempt("the hub's API port is closed to the network, open to the containers", api_port_closed)
     finally:
         for term in terms.values():
             try:
@@ -637,6 +659,28 @@ def run(opts: argparse.Namespace) -> int:
         hub.stop()
         cleanup(work, opts.keep)
     return finish(report, started)
+
+
+@contextlib.contextmanager
+def test_host():
+    """Another host on the network: a network namespace of this check joined to this machine by a
+    veth pair (10.250.47.1 here, .2 there); yields this machine's address there and a function
+    running a shell command there (its exit code)."""
+    name, here, there = "hubcheck-%d" % os.getpid(), "hcv%d" % (os.getpid() % 100000), "hcp%d" % (os.getpid() % 100000)
+    setup = [["ip", "netns", "add", name], ["ip", "link", "add", here, "type", "veth", "peer", "name", there],
+             ["ip", "link", "set", there, "netns", name], ["ip", "addr", "add", "10.250.47.1/30", "dev", here],
+             ["ip", "link", "set", here, "up"],
+             ["ip", "netns", "exec", name, "ip", "addr", "add", "10.250.47.2/30", "dev", there],
+             ["ip", "netns", "exec", name, "ip", "link", "set", there, "up"],
+             ["ip", "netns", "exec", name, "ip", "link", "set", "lo", "up"]]
+    try:
+        for command in setup:
+            subprocess.run(command, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        yield "10.250.47.1", lambda shell: subprocess.run(["ip", "netns", "exec", name, "sh", "-c", shell],
+                                                          stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL).returncode
+    finally:
+        subprocess.run(["ip", "link", "del", here], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        subprocess.run(["ip", "netns", "del", name], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
 
 
 def cleanup(work: Path, keep: bool) -> None:
@@ -668,6 +712,8 @@ def main() -> int:
     parser.add_argument("--image", default="localhost/ros-course", help="the student image's tag")
     parser.add_argument("--no-build", action="store_true", help="use the image as it is")
     parser.add_argument("--keep", action="store_true", help="keep the scratch folder (data, logs)")
+    parser.add_argument("--extra-config", default="", help="JupyterHub config run after the course's: to see a "
+                        "check fail when a protection is taken away (docs/hub.md)")
     opts = parser.parse_args()
     if os.geteuid() != 0:
         print("hub check: run it as root (sudo make hub-check): podman runs the containers as root here",

@@ -9,7 +9,8 @@ it; otherwise this starts podman's Docker-compatible service on a socket of the 
 --time=0 unix://SOCK`: the runtime and cgroup manager podman needs on this kind of machine,
 tools/podman_check.py, and the network stack whose internal networks have a gateway) and
 stops it when the hub stops. JupyterHub stops the students' servers when it stops
-(their files stay in the hub's data folder).
+(their files stay in the hub's data folder). While the hub runs, its API port is closed to all
+but loopback and the containers' bridges (course_hub.firewall).
 """
 from __future__ import annotations
 
@@ -22,10 +23,14 @@ import sys
 import time
 from typing import Dict, List, Mapping, Optional, Sequence
 
+from course_hub import firewall
+
 # netavark, not CNI: podman installed without its recommends picks CNI, whose internal networks
 # have no gateway the containers could reach the hub on
 PODMAN = ["podman", "--runtime", "runc", "--cgroup-manager=cgroupfs", "--network-backend", "netavark"]
 DEFAULT_SOCKET = "/run/ros-course-hub/podman.sock"
+API_PORT_VAR = "HUB_API_PORT"  # the hub's config reads it too (deploy/jupyterhub/jupyterhub_config.py)
+DEFAULT_API_PORT = 8081
 SOCKET_TIMEOUT_S = 120.0  # podman takes seconds to start, minutes on a loaded machine
 STOP_TIMEOUT_S = 60.0
 
@@ -77,11 +82,12 @@ def stop(proc: Optional[subprocess.Popen]) -> None:
         proc.wait()
 
 
-def hub_env(env: Mapping[str, str], docker_host: str) -> Dict[str, str]:
-    """The hub's environment: DOCKER_HOST set, and no ROS workspace's Python on its path (the hub
-    runs from its own venv)."""
+def hub_env(env: Mapping[str, str], docker_host: str, api_port: int = DEFAULT_API_PORT) -> Dict[str, str]:
+    """The hub's environment: DOCKER_HOST and its API port set, and no ROS workspace's Python on
+    its path (the hub runs from its own venv)."""
     clean = {k: v for k, v in env.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
     clean["DOCKER_HOST"] = docker_host
+    clean[API_PORT_VAR] = str(api_port)
     return clean
 
 
@@ -89,6 +95,10 @@ def parse(argv: Sequence[str]) -> argparse.Namespace:
     parser = argparse.ArgumentParser(prog="hub", description=__doc__.split("\n\n")[0])
     parser.add_argument("--config", required=True, help="JupyterHub's config file (deploy/jupyterhub/jupyterhub_config.py)")
     parser.add_argument("--jupyterhub", required=True, help="the jupyterhub executable (.venv-hub/bin/jupyterhub)")
+    parser.add_argument("--api-port", type=int, default=int(os.environ.get(API_PORT_VAR) or DEFAULT_API_PORT),
+                        help="the hub's API port, which the containers call (default $%s or %d); it is closed to "
+                        "everything but loopback and the containers' bridges while the hub runs (course_hub.firewall)"
+                        % (API_PORT_VAR, DEFAULT_API_PORT))
     parser.add_argument("--socket", default=DEFAULT_SOCKET, help="where podman's Docker API listens when DOCKER_HOST "
                         "does not answer (default %s)" % DEFAULT_SOCKET)
     return parser.parse_args(list(argv))
@@ -110,10 +120,16 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             return 2
         docker_host = "unix://" + args.socket
         print("hub: podman's Docker API on %s" % docker_host, flush=True)
+    try:
+        firewall.guard(args.api_port)
+    except RuntimeError as err:
+        print("hub: %s" % err, file=sys.stderr)
+        stop(engine)
+        return 2
     # umask 077: the hub's database, proxy pid file and the students' folders are nobody else's
     # (hubconfig sets the modes that must be wider explicitly)
     hub = subprocess.Popen([args.jupyterhub, "-f", os.path.abspath(args.config)],
-                           env=hub_env(os.environ, docker_host), start_new_session=True, umask=0o077)
+                           env=hub_env(os.environ, docker_host, args.api_port), start_new_session=True, umask=0o077)
 
     def forward(signum: int, _frame: object) -> None:
         if hub.poll() is None:
@@ -126,4 +142,5 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     finally:
         stop(hub)
         stop(engine)
+        firewall.remove(args.api_port)
     return code

@@ -16,5 +16,7 @@ def test_podman_serves_the_docker_api_with_the_runtime_cgroups_and_network_stack
 
 
 def test_the_hub_runs_without_the_workspaces_python_path():
-    env = runner.hub_env({"PYTHONPATH": "/ws/devel/lib/python3/dist-packages", "HOME": "/root"}, "unix:///s")
-    assert env == {"HOME": "/root", "DOCKER_HOST": "unix:///s"}
+    env = runner.hub_env({"PYTHONPATH": "/ws/devel/lib/python3/dist-packages", "HOME": "/root"}, "unix:///s", 8123)
+    assert env == {"HOME": "/root", "DOCKER_HOST": "unix:///s", "HUB_API_PORT": "8123"}
+
+

@@ -51,7 +51,6 @@ CHECKOUT = Path(__file__).resolve().parents[4]  # <checkout>/src/course_testkit/
 LOCAL_CONFIG = '''# LocalHub's additions to the course's config (course_testkit.hub)
 c = get_config()  # noqa: F821
 load_subconfig(%(course)r)  # noqa: F821
-c.JupyterHub.hub_port = %(hub_port)d
 c.ConfigurableHTTPProxy.api_url = "http://127.0.0.1:%(proxy_api_port)d"
 c.JupyterHub.services = [{"name": "idle-culler", "api_token": %(culler_token)r}]
 '''
@@ -264,12 +263,13 @@ class LocalHub:
         self.config = self.work / "local_hub_config.py"
         self.config.write_text(LOCAL_CONFIG % {
             "course": str(CHECKOUT / "deploy" / "jupyterhub" / "jupyterhub_config.py"),
-            "hub_port": isolation.free_port(), "proxy_api_port": isolation.free_port(),
+            "proxy_api_port": isolation.free_port(),
             "culler_token": self.culler_token} + extra_config)
         self.env = dict(os.environ, HUB_DATA=str(self.data), HUB_CLASS_LIST=str(self.class_list), HUB_IMAGE=image,
                         HUB_URL=self.bind_url)
         self.env.pop("DOCKER_HOST", None)
         self.socket = "/run/ros-course-hub-local-%d/podman.sock" % os.getpid()
+        self.api_port = isolation.free_port()
         self.log = self.work / "hub.log"
         self.proc: Optional[subprocess.Popen] = None
 
@@ -278,7 +278,7 @@ class LocalHub:
             self.proc = subprocess.Popen(
                 ["/usr/bin/python3", str(CHECKOUT / "src" / "course_hub" / "scripts" / "hub"), "--config",
                  str(self.config), "--jupyterhub", str(CHECKOUT / ".venv-hub" / "bin" / "jupyterhub"),
-                 "--socket", self.socket],
+                 "--socket", self.socket, "--api-port", str(self.api_port)],
                 env=self.env, stdout=out, stderr=subprocess.STDOUT, start_new_session=True, cwd=str(self.work))
         proc = self.proc
         if not wait_for(lambda: proc.poll() is not None or self.answers(), HUB_START_TIMEOUT_S, 0.2) or \

@@ -72,6 +72,11 @@ if [ "${COURSE_HUB:-0}" = 1 ]; then
     $sudo apt-get update
     $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "${hub_missing[@]}"
   fi
+  # podman's --userns=auto (each student container in a user namespace of its own) takes its
+  # ranges from the `containers` entries (course_hub.hubconfig)
+  for ids in /etc/subuid /etc/subgid; do
+    grep -q '^containers:' "$ids" 2>/dev/null || { echo "containers:1000000:1000000000" >> "$ids"; echo "deps: $ids: containers:1000000:1000000000 (podman's user namespaces)"; }
+  done
   venv "$root/.venv-hub" "$root/requirements-hub.txt" "JupyterHub"
   node_dir="$root/.hub/node"
   if ! cmp -s "$root/deploy/jupyterhub/package.json" "$node_dir/package.json" \

@@ -293,11 +293,17 @@ def run(opts: argparse.Namespace) -> int:
         def hardened() -> str:
             code, said = terms["alice"].run(
                 "touch /course/x 2>&1; grep -E '^(NoNewPrivs|CapEff|CapPrm)' /proc/self/status; "
+                "echo uid_map $(cat /proc/self/uid_map); "
                 "df -h --output=size,target ~/catkin_ws/src /tmp ~ | tail -n +2")
             assert "Read-only file system" in said, said
             assert re.search(r"NoNewPrivs:\s+1", said) and re.search(r"CapEff:\s+0+\b", said), said
+            mapped = re.search(r"uid_map (\d+) (\d+) (\d+)", said)
+            assert mapped and mapped.group(2) != "0", "no user namespace of its own: %s" % said
+            owner = (hub.data / "users" / "alice" / "src").stat().st_uid
+            assert owner >= int(mapped.group(2)), "alice's src is host uid %d" % owner
             return " | ".join(line.strip() for line in said.splitlines() if line.strip())
-        report.attempt("a student's container: the course read-only, no new privileges, no capabilities", hardened)
+        report.attempt("a student's container: its own user namespace, the course read-only, no new privileges, "
+                       "no capabilities", hardened)
 
         def disk_bound() -> str:
             filler = users[FILLER]
@@ -365,13 +371,11 @@ def run(opts: argparse.Namespace) -> int:
         report.attempt("the TA (admin) reaches bob's server and terminal", admin)
 
         def hostile_page() -> str:
-            hub_host = urllib.parse.urlparse(hub.url).netloc
             alice = users["alice"]
             alice.make_folder("www")
             alice.write_file("www/evil.html", EVIL_PAGE % {"hub": hub.url})
             code, said = terms["alice"].run("(cd ~/www && python3 -m http.server %d --bind 127.0.0.1 > /dev/null 2>&1 &)"
                                             % EVIL_PORT)
-            page = "%s/user/alice/proxy/%d/evil.html" % (alice.origins["alice"], EVIL_PORT)
             tom = users[TA]
             status, tokens_before = tom.hub_api("GET", "/users/%s/tokens" % TA)
             with chromium() as browser:
@@ -383,7 +387,9 @@ def run(opts: argparse.Namespace) -> int:
                 browser.get(hub.url + "/user/alice/lab")  # the TA opens alice's server to help her
                 if "/oauth2/authorize" in browser.current_url:
                     browser.find_element("css selector", "form input[type=submit], form button").click()
-                assert wait_for(lambda: "alice.%s" % hub_host in browser.current_url, 60, 0.2), browser.current_url
+                assert wait_for(lambda: "/user/alice/" in browser.current_url, 60, 0.2), browser.current_url
+                where = urllib.parse.urlparse(browser.current_url)
+                page = "%s://%s/user/alice/proxy/%d/evil.html" % (where.scheme, where.netloc, EVIL_PORT)
                 browser.get(page)
                 assert wait_for(lambda: browser.title.startswith("done"), 60, 0.5), browser.page_source[:500]
                 seen = browser.title

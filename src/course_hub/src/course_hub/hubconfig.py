@@ -3,32 +3,32 @@
 deploy/jupyterhub/jupyterhub_config.py (the one file a course adapts) fills a `HubSettings` and
 calls `apply(c, settings)`. What it sets up, and why:
 
-- **Accounts:** the class list (course_hub.classlist) is the hub's allowed users; its TAs are the
-  hub's admins (JupyterHub's `admin` role: they open any student's server, `/user/<name>/`).
-  Passwords: FirstUseAuthenticator, with every listed user given an initial password when the hub
-  starts (course_hub.passwords: its hash in the authenticator's file, the password on the sheet
-  `<data>/initial-passwords.csv` the instructor hands out), so nobody can claim a classmate's
-  name by logging in first; `/hub/auth/change-password` changes it, and `make hub-password
-  RESET=<user>` is an admin's reset (docs/hub.md).
-- **Each student a container** of the student image (DockerSpawner, through the engine's Docker
-  API: podman's `system service` here), running `make jupyter`, which becomes
-  `jupyterhub-singleuser` under a hub (course_workbench.startup). The container is removed when the
-  server stops; the student's files are not in it.
-- **A network of their own:** before the spawn, an *internal* bridge network
-  `course-hub-net-<user>`: the container has an address on it and no route anywhere else, so A's
-  container cannot open a connection to B's, whatever port B's processes listen on (and cannot
-  reach the internet: the course needs none). The hub's host reaches the container on its
-  network's address; the container reaches the hub's API on its network's gateway (the host's
-  own address on that bridge; the API listens on every address, `hub_ip` 0.0.0.0, and answers only
-  with a token). podman's `isolate` option was the first choice, but netavark 1.4 (Debian 12)
-  drops the firewall's jump to its isolation rules whenever any isolated network's container
-  stops, which left the other students' networks open (seen here, docs/hub.md).
-- **Files:** `<data>/users/<user>/src` is the container's `~/catkin_ws/src` (persistent: it stays
-  when the server stops, is culled or the image changes), and `<data>/users/<user>/grades` its
-  `~/grades`, read-only: the reports grading from the hub copies there (course_hub.grading).
-- **Limits:** memory, CPU and processes per container.
-- **Idle culling:** jupyterhub-idle-culler as a hub service stops servers idle for
-  `idle_timeout_s`; the files stay.
+- **Accounts:** the class list (course_hub.classlist) is the hub's allowed users, and nobody else,
+  whatever the hub's database remembers; its TAs are the hub's admins (they open any student's
+  server). Passwords: FirstUseAuthenticator's file, with every listed user given an initial
+  password when the hub starts (course_hub.passwords, the sheet `<data>/initial-passwords.csv`),
+  checked by course_hub.auth off the event loop, failed logins limited per name and address.
+- **One name, one place:** every place of a user (container, network, disk, folders, server's
+  host) comes from course_hub.names; the spawner and the hooks here ask it.
+- **Each student a container** of the student image (DockerSpawner, through podman's Docker API),
+  running `make jupyter`, which becomes `jupyterhub-singleuser` (course_workbench.startup): in a
+  user namespace of its own, without capabilities or new privileges, the image read-only, the
+  home and /tmp bounded tmpfs. Removed when the server stops; the student's files are not in it.
+- **Its own origin:** the server at `<slug>.<domain>` (`subdomain_host`), so a page the student
+  serves cannot act with a TA's hub cookies.
+- **A network of their own:** before the spawn, an *internal* bridge network: the container has
+  an address on it and no route anywhere else, so A's container cannot open a connection to B's
+  (nor reach the internet: the course needs none). The container reaches the hub's API on its
+  network's gateway, so the API listens on every address (`hub_ip` 0.0.0.0); `make hub` closes
+  that port to the network (course_hub.firewall). podman's `isolate` option was the first
+  choice, but netavark 1.4 (Debian 12) drops the firewall's jump to its isolation rules whenever
+  any isolated network's container stops (seen here, docs/hub.md).
+- **Files:** the user's disk (course_hub.disks: a reserved ext4 image, loop-mounted), whose `src`
+  is the container's `~/catkin_ws/src` (it stays when the server stops, is culled or the image
+  changes) and whose `grades` is its `~/grades`, read-only (course_hub.grading writes there).
+- **Limits:** memory, CPU, processes, disk per container.
+- **Culling:** jupyterhub-idle-culler as a hub service stops servers idle for `idle_timeout_s`,
+  and any server older than `max_age_s`; the files stay.
 
 This module never imports jupyterhub or dockerspawner at import time: its plain parts (the
 settings, names, folders) are unit-tested without them.
@@ -52,6 +52,7 @@ STUDENT_HOME = "/home/student"         # the student image's user (docker/Docker
 SRC_IN_CONTAINER = STUDENT_HOME + "/catkin_ws/src"
 GRADES_IN_CONTAINER = STUDENT_HOME + "/grades"
 CULLER_SERVICE = "idle-culler"
+USERNS = "auto"
 # What `make jupyter` runs, exec'd down to the server itself (bash, rosrun, the start-up, then
 # jupyterhub-singleuser): the server is the container's main process, so the container ends with
 # the server's own exit status (137 when the memory limit killed it) and not make's 2.
@@ -106,9 +107,12 @@ def remove_network(client: Any, place: names.Places) -> None:
         pass
 
 
-def mounts(place: names.Places) -> Dict[str, Dict[str, str]]:
-    """DockerSpawner's `volumes` and `read_only_volumes` of the user: their src and grades."""
-    return {"volumes": {place.src: SRC_IN_CONTAINER}, "read_only_volumes": {place.grades: GRADES_IN_CONTAINER}}
+def mounts(place: names.Places) -> Dict[str, Dict[str, Any]]:
+    """DockerSpawner's `volumes` and `read_only_volumes` of the user: their src (`U`: podman
+    gives it to the container's user, whichever host uid the user namespace maps it to) and their
+    grades (root's on the host, readable by all)."""
+    return {"volumes": {place.src: {"bind": SRC_IN_CONTAINER, "mode": "rw,U"}},
+            "read_only_volumes": {place.grades: GRADES_IN_CONTAINER}}
 
 
 def make_hooks(settings: HubSettings):
@@ -272,6 +276,11 @@ def apply(c: Any, settings: HubSettings) -> classlist.ClassList:
     c.DockerSpawner.mem_limit = settings.mem_limit
     c.DockerSpawner.cpu_limit = settings.cpu_limit
     c.DockerSpawner.extra_host_config = host_config(settings)
+    # a user namespace of its own for every container (podman's `auto`: a range of host ids no
+    # other running container has, from the `containers` entry of /etc/subuid, which make hub's
+    # set-up writes): the student's uid 1000 is no uid of the host's. docker-py refuses the
+    # value in create_host_config, so it goes into the request's HostConfig directly.
+    c.DockerSpawner.extra_create_kwargs = {"host_config": {"UsernsMode": USERNS}}
     pre_spawn, post_stop = make_hooks(settings)
     c.DockerSpawner.pre_spawn_hook = pre_spawn
     c.DockerSpawner.post_stop_hook = post_stop

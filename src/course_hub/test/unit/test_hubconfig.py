@@ -59,6 +59,7 @@ def test_each_student_a_container_with_limits_their_src_kept_and_grades_read_onl
     assert host["read_only"] is True and set(host["tmpfs"]) == {"/home/student", "/tmp"}
     assert all("size=" in options for options in host["tmpfs"].values())
     assert spawner.cmd[-1].endswith("exec rosrun course_workbench workbench")
+    assert spawner.extra_create_kwargs == {"host_config": {"UsernsMode": "auto"}}  # a user namespace each
     # no template of DockerSpawner's own: the hooks set the mounts from course_hub.names
     assert not hasattr(spawner, "volumes") and not hasattr(spawner, "name_template")
 
@@ -114,7 +115,7 @@ def test_before_a_spawn_the_user_gets_a_disk_and_an_internal_network_all_named_b
     assert spawner.network_name == place.network == "course-hub-net-jean-luc"
     assert engine.made == {place.network: {"driver": "bridge", "internal": True}}
     assert spawner.hub_connect_url == "http://10.89.7.1:8123"
-    assert spawner.volumes == {place.src: "/home/student/catkin_ws/src"}
+    assert spawner.volumes == {place.src: {"bind": "/home/student/catkin_ws/src", "mode": "rw,U"}}
     assert spawner.read_only_volumes == {place.grades: "/home/student/grades"}
     assert place.src == str(tmp_path / "users" / "jean-luc" / "src")
     asyncio.run(pre_spawn(spawner))  # again: the same network, nothing made twice

@@ -85,9 +85,10 @@ c.DockerSpawner.mem_limit = lambda spawner: %(small)r if spawner.user.name == %(
 
 
 # A page a student serves from her own server (any file behind jupyter-server-proxy's /proxy/<port>/):
-# it tries, with the cookies of whoever opens it, to read the hub's API, to make alice an admin,
-# to read a hub page's XSRF token in a frame and to make a token with it. Its findings go to its
-# title. On the hub's own origin (no subdomains) every one of them works.
+# it tries, with the cookies of whoever opens it, to read the hub's API, to make alice an admin
+# (which the hub refuses without an XSRF token), then to read a hub page's XSRF token in a popup
+# and, with it, to make alice an admin and make a token. Its findings go to its title. On the
+# hub's own origin (no subdomains) the popup route works (docs/hub.md, the control).
 EVIL_PAGE = """<!doctype html><title>waiting</title><script>
 (async () => {
   const hub = "%(hub)s", out = [];
@@ -98,15 +99,21 @@ EVIL_PAGE = """<!doctype html><title>waiting</title><script>
         out.push("patch:" + r.status); } catch (e) { out.push("patch-blocked"); }
   try { await fetch(hub + "/hub/api/users/alice", {method: "PATCH", mode: "no-cors", credentials: "include",
           body: JSON.stringify({admin: true})}); out.push("blind-patch-sent"); } catch (e) { out.push("blind-blocked"); }
-  try { const frame = document.createElement("iframe");
-        const loaded = new Promise(r => { frame.onload = r; setTimeout(r, 5000); });
-        frame.src = hub + "/hub/token"; document.body.appendChild(frame); await loaded;
-        const html = frame.contentDocument.documentElement.innerHTML;
-        out.push("frame-read");
-        const xsrf = (html.match(/xsrf[^"']*["']:?\s*["']([^"']+)/) || ["", ""])[1];
-        const r = await fetch(hub + "/hub/api/users/tom/tokens", {method: "POST", credentials: "include",
-          headers: {"X-XSRFToken": xsrf}, body: "{}"});
-        out.push("token:" + r.status); } catch (e) { out.push("frame-blocked"); }
+  try { const w = window.open(hub + "/hub/token");
+        if (!w) { out.push("popup-not-opened"); throw 0; }
+        let xsrf = null;
+        for (let i = 0; i < 100 && !xsrf; i++) {
+          await new Promise(r => setTimeout(r, 100));
+          xsrf = w.jhdata && w.jhdata.xsrf_token;  // a SecurityError unless the hub is this page's origin
+        }
+        out.push("popup-read");
+        const headers = {"X-XSRFToken": xsrf, "Content-Type": "application/json"};
+        let r = await fetch(hub + "/hub/api/users/alice", {method: "PATCH", credentials: "include", headers,
+          body: JSON.stringify({admin: true})});
+        out.push("xsrf-patch:" + r.status);
+        r = await fetch(hub + "/hub/api/users/tom/tokens", {method: "POST", credentials: "include", headers,
+          body: JSON.stringify({note: "alice's"})});
+        out.push("token:" + r.status); } catch (e) { if (e !== 0) out.push("popup-blocked"); }
   document.title = "done " + out.join(" ");
 })();
 </script>"""
@@ -378,7 +385,7 @@ def run(opts: argparse.Namespace) -> int:
                                             % EVIL_PORT)
             tom = users[TA]
             status, tokens_before = tom.hub_api("GET", "/users/%s/tokens" % TA)
-            with chromium() as browser:
+            with chromium(arguments=("--disable-popup-blocking",)) as browser:  # a TA's browser allows the hub's popups
                 browser.get(hub.url + "/hub/login")
                 browser.find_element("name", "username").send_keys(TA)
                 browser.find_element("name", "password").send_keys(passwords[TA])
@@ -401,7 +408,8 @@ def run(opts: argparse.Namespace) -> int:
                 return [t["id"] for t in (model or {}).get("api_tokens", []) if not t.get("oauth_client")]
             made = set(own_tokens(tokens_after)) - set(own_tokens(tokens_before))
             assert not made, ("a token was made for tom", seen, made)
-            for word in ("read:200", "patch:200", "frame-read", "token:"):
+            assert "popup-not-opened" not in seen, "the browser blocked the popup: nothing was tried (%s)" % seen
+            for word in ("read:200", "patch:200", "popup-read", "xsrf-patch:", "token:"):
                 assert word not in seen, seen
             return "alice's page at %s, opened by the TA: %s; alice is no admin, tom has no new token" % (
                 page.split("/user/")[0], seen[5:])
@@ -691,7 +699,7 @@ def test_host():
 
 def cleanup(work: Path, keep: bool) -> None:
     """The check's containers and networks (the hub stops the servers; this makes sure), the
-    students' disks unmounted, its data."""
+    students' disks unmounted (LocalHub.stop does; this makes sure), its data."""
     for container in podman_out("ps", "-aq", "--filter", "name=course-hub-").split():
         podman_out("rm", "-f", container)
     for network in podman_out("network", "ls", "-q", "--filter", "name=course-hub-net-").split():

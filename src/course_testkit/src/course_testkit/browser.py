@@ -27,14 +27,16 @@ def require_browser() -> None:
 
 
 @contextlib.contextmanager
-def chromium(window: Tuple[int, int] = WINDOW, timeout: float = TIMEOUT_S) -> Iterator["object"]:
-    """A headless chromium's selenium driver (page-load and script timeouts set)."""
+def chromium(window: Tuple[int, int] = WINDOW, timeout: float = TIMEOUT_S,
+             arguments: Tuple[str, ...] = ()) -> Iterator["object"]:
+    """A headless chromium's selenium driver (page-load and script timeouts set), with these
+    command-line arguments beside the usual ones."""
     require_browser()
     from selenium import webdriver
     from selenium.webdriver.chrome.service import Service as ChromeService
     options = webdriver.ChromeOptions()
     options.binary_location = shutil.which("chromium")
-    for argument in ARGUMENTS + ("--window-size=%d,%d" % window,):
+    for argument in ARGUMENTS + ("--window-size=%d,%d" % window,) + tuple(arguments):
         options.add_argument(argument)
     # chromedriver binds the port it is given: one no ROS node of a test beside can take first.
     service = ChromeService(executable_path=shutil.which("chromedriver"), port=port_below_ephemeral_range())

@@ -300,7 +300,9 @@ class LocalHub:
             return ""
 
     def stop(self) -> None:
-        """The hub stops every server (their containers removed), then podman's API."""
+        """The hub stops every server (their containers removed), then podman's API; the students'
+        disks it mounted under the scratch folder are unmounted (a spawn or hub_grade mounts them
+        again), so that the folder can be removed."""
         if self.proc is not None and self.proc.poll() is None:
             os.killpg(self.proc.pid, signal.SIGTERM)
             try:
@@ -308,6 +310,10 @@ class LocalHub:
             except subprocess.TimeoutExpired:
                 os.killpg(self.proc.pid, signal.SIGKILL)
                 self.proc.wait()
+        with open("/proc/mounts") as mounts:
+            below = [line.split()[1] for line in mounts if line.split()[1].startswith(str(self.work) + "/")]
+        for point in sorted(below, reverse=True):
+            subprocess.run(["umount", point], check=False)
 
     def __enter__(self) -> "LocalHub":
         self.start()

@@ -95,8 +95,9 @@ hub-grade: build
 	@$(ROSENV) rosrun course_hub hub_grade --data '$(HUB_DATA)' --class-list '$(abspath $(HUB_CLASS_LIST))' \
 	  $(foreach m,$(MILESTONES),--only $(m))
 
-# The hub end to end with real parts (root, podman; ~15 min): the image, a hub, three students logging in
-# over HTTP, isolation, the admin, culling, a failed start, snapshot-and-grade. Not in make test.
+# The hub end to end with real parts (root, podman; ~1.5 min, plus the image's build): the image, a hub,
+# seven students and a TA logging in over HTTP and in Chromium, isolation, the admin, culling, a failed
+# start, snapshot-and-grade, and every attack of a hostile student (docs/hub.md). Not in make test.
 # HUB_CHECK_ARGS="--image localhost/ros-course-hub --no-build" tries an image already built.
 hub-check: build
 	@COURSE_HUB=1 bash $(ROOT)/tools/deps.sh

@@ -54,7 +54,7 @@ from typing import Callable, Dict, List, Optional
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tools"))
-from podman_check import PODMAN as BUILD_PODMAN, network_mounts  # noqa: E402
+from podman_check import PODMAN as BUILD_PODMAN, ensure_podman, import_base, network_mounts  # noqa: E402
 
 from course_hub import names as hub_names  # noqa: E402
 from course_hub.runner import PODMAN  # noqa: E402  (the hub's own podman: its networks)
@@ -144,6 +144,10 @@ class Report:
 
 
 def build_image(image: str, log: Path) -> None:
+    """The student image, from debian:bookworm imported from a debootstrap when missing (no
+    registry is reachable here; tools/podman_check.py)."""
+    ensure_podman()
+    import_base(log)
     scratch = Path(tempfile.mkdtemp(prefix="hub-check-build-"))
     try:
         with open(log, "ab") as out:

@@ -60,9 +60,11 @@ fi
 # configurable-http-proxy in a local prefix (.hub/node, pinned in deploy/jupyterhub/package.json).
 if [ "${COURSE_HUB:-0}" = 1 ]; then
   hub_missing=()
-  # netavark: the network stack the hub asks podman for (course_hub.runner); libnss-myhostname: the
-  # machine's own programs resolve the hub's <user>.hub.localhost names to loopback, as browsers do
-  for pkg in podman runc netavark libnss-myhostname; do
+  # netavark: the network stack the hub asks podman for (course_hub.runner); iptables: the hub's
+  # API port closed to the network (course_hub.firewall); libnss-myhostname: the machine's own
+  # programs resolve the hub's <user>.hub.localhost names to loopback, as browsers do; iproute2:
+  # make hub-check's test host (ip netns) and its ss
+  for pkg in podman runc netavark iptables libnss-myhostname iproute2; do
     dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed" || hub_missing+=("$pkg")
   done
   # npm: Debian's nodejs and npm, unless a node that brings its own npm (nodesource's) is there

@@ -275,9 +275,9 @@ class Grader:
             self._expect(sub, len(selected))
             runnable = []
             for m in selected:
-                missing = verdict.missing_package(m, packages)
+                missing = verdict.missing_package(m, packages, files)
                 if missing:
-                    self._record(Verdict(sub.name, m, False, missing, cause="package_missing"))
+                    self._record(Verdict(sub.name, m, False, missing, cause=causes.of(missing) or "package_missing"))
                 else:
                     runnable.append(m)
             if not runnable:
@@ -356,7 +356,11 @@ class Grader:
             passed = result.passed and not verdict.ended_by_limit(hits)
             reason = "" if passed else verdict.ENDED_BY_LIMIT if result.passed else result.summary()
             if not result.passed:
-                hints = hints + verdict.output_capped(artifacts)
+                # what the run printed, unless the files said it already (no #! line: both see it)
+                said = {causes.of(k) for k in hints}
+                hints = hints + [h for h in verdict.output_hints(artifacts)
+                                 if not (causes.of(h) == "no_shebang" and "no_shebang" in said)] \
+                    + verdict.output_capped(artifacts)
                 reason = "\n".join([h for h in first if h.split(" (")[0] not in reason] + [reason]
                                    + [h for h in hints if h not in reason])
             copy_logs(os.path.join(home, "log"), os.path.join(artifacts, "ros_log"))
@@ -366,7 +370,10 @@ class Grader:
             shutil.rmtree(home, ignore_errors=True)
             cause = "" if passed else _run_cause(result.passed, result.timed_out, first, causes.recorded(artifacts),
                                                  hints)
-            self._record(Verdict(sub.name, m, passed, reason, verdict.log_tails(artifacts),
+            # what the student reads quotes their files from their package down, not the grader's folders
+            hide = [os.path.join(ws, "src") if ws else "", self._work_dir(sub.name), self.options.out]
+            self._record(Verdict(sub.name, m, passed, verdict.without_grader_paths(reason, hide),
+                                 verdict.without_grader_paths(verdict.log_tails(artifacts), hide),
                                  result.elapsed, artifacts, verdict.sandbox_notes(hits), cause))
         except Exception:  # noqa: BLE001
             if self._stop.is_set():

@@ -17,7 +17,7 @@ import re
 import stat
 from typing import Dict, Iterable, List, NamedTuple, Optional, Sequence
 
-from course_milestones import causes
+from course_milestones import causes, scripts
 from course_milestones.milestone import Milestone
 from course_testkit.isolation import MAX_FILE_BYTES
 
@@ -89,14 +89,32 @@ def _close(name: str, candidates: Iterable[str]) -> List[str]:
     return difflib.get_close_matches(name, list(candidates), 1, CLOSE_NAME_RATIO)
 
 
-def missing_package(milestone: Milestone, found: Sequence[Package]) -> Optional[str]:
+def rosbuild_packages(root: str) -> List[str]:
+    """Folders under `root` (relative) that are rosbuild packages: a manifest.xml and no package.xml."""
+    found = []
+    for folder, dirs, files in os.walk(root):
+        dirs[:] = sorted(d for d in dirs if not d.startswith(".") and d not in ("build", "devel", "install"))
+        if "manifest.xml" in files and "package.xml" not in files:
+            found.append(os.path.relpath(folder, root))
+    return found
+
+
+def missing_package(milestone: Milestone, found: Sequence[Package], root: str = "") -> Optional[str]:
     """Why the submission cannot be graded on `milestone` because the package the text names is
-    not in it, or None when it is there (or the milestone needs none)."""
+    not in it, or None when it is there (or the milestone needs none). `root`: the submission's
+    files, where a rosbuild package of the expected name is looked for."""
     if not milestone.packages:
         return None
     names = [p.name for p in found if p.name]
     if set(names) & set(milestone.packages):
         return None
+    old = [f for f in (rosbuild_packages(root) if root else []) if os.path.basename(f) in milestone.packages]
+    if old:
+        return causes.finding("rosbuild", (
+            "%s is a rosbuild package (manifest.xml, no package.xml), from before catkin: Noetic builds catkin "
+            "packages only. Make it one: a package.xml (catkin_create_pkg %s rospy std_msgs writes one) naming its "
+            "dependencies, and a catkin CMakeLists.txt (find_package(catkin ...), catkin_package()) in place of "
+            "rosbuild's (rosbuild_init)") % (old[0], os.path.basename(old[0])))
     expected = " or ".join("'%s'" % n for n in milestone.packages)
     unreadable = ["%s (%s)" % (os.path.basename(p.path), p.problem) for p in found if not p.name]
     if not names and not unreadable:
@@ -135,6 +153,35 @@ def log_tails(folder: str, lines: int = LOG_TAIL_LINES) -> str:
         title = "--- last lines of %s%s ---" % (os.path.basename(path), big)
         parts.append("\n".join([title] + (tail or ["(empty)"])))
     return "\n".join(parts)
+
+
+def output_hints(folder: str) -> List[str]:
+    """The causes the student logs of a run show (course_milestones.scripts.output_problems:
+    a script run by sh, Python 2 in Python 3, ...), each once."""
+    seen: List[str] = []
+    for path in sorted(glob.glob(os.path.join(folder, "*.log"))):
+        try:
+            size = os.path.getsize(path)
+            with open(path, "rb") as f:
+                f.seek(max(0, size - 4 * LOG_TAIL_BYTES))
+                text = f.read().decode("utf-8", errors="replace")
+        except OSError:
+            continue
+        seen.extend(h for h in scripts.output_problems(text) if h not in seen)
+    return seen
+
+
+def without_grader_paths(text: str, folders: Sequence[str]) -> str:
+    """`text` for a student: each of the grader's `folders` (the work folder's src first) cut out of
+    the paths it quotes, so `<work>/ws/src/chatter/scripts/talker.py` reads chatter/scripts/talker.py.
+    A path a check quoted cut at its start (`...k/alice/ws/src/chatter/...`) loses its fragment too:
+    whatever ends with the folder's last three parts."""
+    for folder in folders:
+        parts = [p for p in folder.rstrip("/").split("/") if p]
+        if parts:
+            tail = re.escape("/".join(parts[-3:]) + "/")
+            text = re.sub(r"[^\s'\"(]*" + tail, "", text)
+    return text
 
 
 def output_capped(folder: str) -> List[str]:

@@ -81,3 +81,24 @@ def test_a_run_ended_at_a_sandbox_limit_fails_whatever_its_check_saw(tmp_path):
         report.write_text(text)
         assert verdict.sandbox_hits(str(report)) == {}, text
     assert verdict.sandbox_hits(str(tmp_path / "none.json")) == {}
+
+
+def test_a_rosbuild_package_of_the_expected_name_is_named_as_such(tmp_path):
+    old = tmp_path / "lab2" / "src" / "mybot_teleop"
+    old.mkdir(parents=True)
+    (old / "manifest.xml").write_text("<package/>")
+    (old / "CMakeLists.txt").write_text("include($ENV{ROS_ROOT}/core/rosbuild/rosbuild.cmake)\n")
+    milestone = Milestone("teleop", "Teleop", "x", "teleop.test", ("mybot_teleop",))
+    said = verdict.missing_package(milestone, [], str(tmp_path))
+    assert said.startswith("lab2/src/mybot_teleop is a rosbuild package (manifest.xml, no package.xml)")
+    assert getattr(said, "cause", "") == "rosbuild"
+    (tmp_path / "other").mkdir()
+    assert "no catkin package found" in verdict.missing_package(milestone, [], str(tmp_path / "other"))
+
+
+def test_a_students_text_quotes_their_paths_from_the_package_down_even_cut_at_the_start():
+    src, work, out = "/tmp/g/grades/_work/alice/ws/src", "/tmp/g/grades/_work/alice", "/tmp/g/grades"
+    text = ("ending with 'ades/_work/alice/ws/src/chatter/scripts/talker.py\", line 3'\n"
+            "File \"/tmp/g/grades/_work/alice/ws/src/chatter/scripts/talker.py\"; see /tmp/g/grades/_work/alice/runs/x")
+    assert verdict.without_grader_paths(text, [src, work, out]) == (
+        "ending with 'chatter/scripts/talker.py\", line 3'\nFile \"chatter/scripts/talker.py\"; see runs/x")

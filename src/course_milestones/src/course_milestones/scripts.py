@@ -1,13 +1,26 @@
-"""Scripts rosrun cannot start, said in words a student can act on.
+"""Scripts rosrun cannot start, or Python 3 cannot run, said in words a student can act on.
 
 One detector for the whole course: the checks append its sentences to a failure (a student
 running `rostest` alone sees them) and the grader adds the ones a check did not already say.
-Two mistakes are common in the labs: a `#!` script handed in without its executable bit (the
-texts' `chmod +x` step), and a `#!` line saved with Windows line endings. Pure file reading.
+The mistakes real students make most, each found from their files (`script_problems`) or from
+what their process printed (`output_problems`), never guessed from the milestone:
+- a `#!` script handed in without its executable bit (the texts' `chmod +x` step);
+- a `#!` line saved with Windows line endings (`/usr/bin/env: 'python3\r'`);
+- an executable Python script with no `#!` line at all: rosrun runs it with `sh`, which
+  prints `import: not found` and `Syntax error: "(" unexpected`;
+- Python 2, from the Kinetic and Melodic tutorials most public code still follows: the `print`
+  statement and `except X, e` (a SyntaxError before anything runs), `raw_input` (a NameError when
+  reached), and `/` between integers, which gives a float in Python 3 (a TypeError where an
+  integer was needed);
+- `#!/usr/bin/env python` where no `python` is on PATH (the course's environment has one: its
+  venv's, Python 3, so the course accepts that line; a machine without it prints
+  `/usr/bin/env: 'python': No such file or directory`).
+Pure file and text reading.
 """
 from __future__ import annotations
 
 import os
+import re
 from typing import List
 
 from course_milestones import causes
@@ -28,18 +41,60 @@ def _first_line(path: str) -> bytes:
         return b""
 
 
+PYTHON3_FORM = "Noetic runs Python 3"
+NO_SHEBANG = ("%s has no #! line, so rosrun runs it with sh (hence `import: not found` and `Syntax error`): "
+              "make its first line #!/usr/bin/env python3")
+
+
+def python2_problem(source: bytes, rel: str) -> str:
+    """A sentence when `source` is Python 2 that Python 3 refuses to compile, else ""."""
+    try:
+        compile(source, rel, "exec", dont_inherit=True)
+        return ""
+    except SyntaxError as err:
+        line = (err.text or "").strip()
+        where = "%s line %s" % (rel, err.lineno)
+        if "Missing parentheses in call to 'print'" in str(err.msg) or re.match(r"print\s+[^\s(=]", line):
+            return causes.finding("python2", "%s: `%s` is Python 2's print statement; %s: write print(...)"
+                                  % (where, line[:60], PYTHON3_FORM))
+        if re.match(r"except\s+[\w.]+\s*,\s*\w+\s*:", line):
+            exc, name = re.match(r"except\s+([\w.]+)\s*,\s*(\w+)", line).groups()
+            return causes.finding("python2", "%s: `%s` is Python 2; %s: write `except %s as %s:`"
+                                  % (where, line[:60], PYTHON3_FORM, exc, name))
+        return ""
+    except (ValueError, TypeError):  # a NUL byte: not Python source
+        return ""
+
+
+def _source(path: str) -> bytes:
+    try:
+        if os.path.getsize(path) > MAX_SCRIPT_BYTES:
+            return b""
+        with open(path, "rb") as f:
+            return f.read()
+    except OSError:
+        return b""
+
+
 def script_problems(package_dir: str) -> List[str]:
-    """One sentence per problem: a #! line without the executable bit, or a #! line ending in a
-    carriage return. Paths are given from the package's name down (chatter/scripts/talker.py)."""
+    """One sentence per problem: a #! line without the executable bit, a #! line ending in a
+    carriage return, an executable .py file without a #! line, Python 2 that Python 3 cannot
+    compile. Paths are given from the package's name down (chatter/scripts/talker.py)."""
     problems = []
     for folder, dirs, files in os.walk(package_dir):
         dirs[:] = sorted(d for d in dirs if d not in SKIPPED_DIRS and not d.startswith("."))
         for name in sorted(files):
             path = os.path.join(folder, name)
             first = _first_line(path)
+            rel = os.path.relpath(path, os.path.dirname(package_dir))
+            if name.endswith(".py") and os.path.isfile(path):
+                old = python2_problem(_source(path), rel)
+                if old:
+                    problems.append(old)
+                if not first.startswith(b"#!") and os.access(path, os.X_OK):
+                    problems.append(causes.finding("no_shebang", NO_SHEBANG % rel))
             if not first.startswith(b"#!"):
                 continue
-            rel = os.path.relpath(path, os.path.dirname(package_dir))
             if not os.access(path, os.X_OK):
                 problems.append(causes.finding(
                     "not_executable", "%s starts with #! but is not executable, so rosrun cannot start it "
@@ -50,3 +105,27 @@ def script_problems(package_dir: str) -> List[str]:
                                 "exist (convert it to Unix line endings, e.g. dos2unix %s)"
                                 % (rel, (first[2:].decode(errors="replace").split() or ["?"])[-1], name)))
     return problems
+
+
+# What a process printed -> the sentence naming its cause. Each pattern is the interpreter's own
+# words for one mistake; the sentence says what to write instead.
+OUTPUT_PATTERNS = (
+    (re.compile(r"import: not found|Syntax error: \"\(\" unexpected|from: can't read /var/mail"), "no_shebang",
+     "a Python script was run by sh (`import: not found`): it has no #! line; make its first line "
+     "#!/usr/bin/env python3"),
+    (re.compile(r"/usr/bin/env: .python.: No such file or directory"), "python2",
+     "`#!/usr/bin/env python` asks for `python`, which this machine does not have: write "
+     "#!/usr/bin/env python3 (%s)" % PYTHON3_FORM),
+    (re.compile(r"NameError: name 'raw_input' is not defined"), "python2",
+     "raw_input is Python 2; %s: write input(...)" % PYTHON3_FORM),
+    (re.compile(r"SyntaxError: Missing parentheses in call to 'print'"), "python2",
+     "`print x` is Python 2's print statement; %s: write print(x)" % PYTHON3_FORM),
+    (re.compile(r"'float' object cannot be interpreted as an integer|indices must be integers or slices, not float"),
+     "python2", "a / between integers gives a float in Python 3 (it gave an integer in Python 2), where an integer "
+     "is needed: write // for integer division"),
+)
+
+
+def output_problems(text: str) -> List[str]:
+    """The sentences (causes.Finding) for the mistakes `text` (a process's output) shows."""
+    return [causes.finding(key, sentence) for pattern, key, sentence in OUTPUT_PATTERNS if pattern.search(text)]

@@ -356,11 +356,7 @@ class Grader:
             passed = result.passed and not verdict.ended_by_limit(hits)
             reason = "" if passed else verdict.ENDED_BY_LIMIT if result.passed else result.summary()
             if not result.passed:
-                # what the run printed, unless the files said it already (no #! line: both see it)
-                said = {causes.of(k) for k in hints}
-                hints = hints + [h for h in verdict.output_hints(artifacts)
-                                 if not (causes.of(h) == "no_shebang" and "no_shebang" in said)] \
-                    + verdict.output_capped(artifacts)
+                hints = hints + verdict.output_hints(artifacts, hints) + verdict.output_capped(artifacts)
                 reason = "\n".join([h for h in first if h.split(" (")[0] not in reason] + [reason]
                                    + [h for h in hints if h not in reason])
             copy_logs(os.path.join(home, "log"), os.path.join(artifacts, "ros_log"))

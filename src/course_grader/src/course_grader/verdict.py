@@ -15,7 +15,7 @@ import json
 import os
 import re
 import stat
-from typing import Dict, Iterable, List, NamedTuple, Optional, Sequence
+from typing import Dict, Iterable, List, NamedTuple, Optional, Sequence, Tuple
 
 from course_milestones import causes, scripts
 from course_milestones.milestone import Milestone
@@ -93,7 +93,7 @@ def rosbuild_packages(root: str) -> List[str]:
     """Folders under `root` (relative) that are rosbuild packages: a manifest.xml and no package.xml."""
     found = []
     for folder, dirs, files in os.walk(root):
-        dirs[:] = sorted(d for d in dirs if not d.startswith(".") and d not in ("build", "devel", "install"))
+        dirs[:] = sorted(d for d in dirs if not d.startswith(".") and d not in scripts.SKIPPED_DIRS)
         if "manifest.xml" in files and "package.xml" not in files:
             found.append(os.path.relpath(folder, root))
     return found
@@ -136,18 +136,26 @@ def build_failed(summary: str) -> str:
     return "the submission does not build (catkin_make failed):\n%s" % summary
 
 
+def _tail(path: str, nbytes: int) -> Optional[Tuple[int, str]]:
+    """(the size of the file `path`, its last `nbytes` decoded); None when it cannot be read."""
+    try:
+        size = os.path.getsize(path)
+        with open(path, "rb") as f:
+            f.seek(max(0, size - nbytes))
+            return size, f.read().decode("utf-8", errors="replace")
+    except OSError:
+        return None
+
+
 def log_tails(folder: str, lines: int = LOG_TAIL_LINES) -> str:
     """The last lines of each student log (`*.log`) a check wrote in `folder`."""
     paths = sorted(glob.glob(os.path.join(folder, "*.log")), key=os.path.getmtime)[-MAX_LOGS:]
     parts = []
     for path in paths:
-        try:
-            size = os.path.getsize(path)
-            with open(path, "rb") as f:
-                f.seek(max(0, size - LOG_TAIL_BYTES))
-                text = _ANSI.sub("", f.read().decode("utf-8", errors="replace"))
-        except OSError:
+        read = _tail(path, LOG_TAIL_BYTES)
+        if read is None:
             continue
+        size, text = read[0], _ANSI.sub("", read[1])
         tail = [line[:300] for line in text.splitlines()[-lines:]]
         big = " (%d bytes)" % size if size > LOG_TAIL_BYTES else ""
         title = "--- last lines of %s%s ---" % (os.path.basename(path), big)
@@ -155,19 +163,17 @@ def log_tails(folder: str, lines: int = LOG_TAIL_LINES) -> str:
     return "\n".join(parts)
 
 
-def output_hints(folder: str) -> List[str]:
+def output_hints(folder: str, known: Iterable[str] = ()) -> List[str]:
     """The causes the student logs of a run show (course_milestones.scripts.output_problems:
-    a script run by sh, Python 2 in Python 3, ...), each once."""
+    a script run by sh, Python 2 in Python 3, ...), each once, less those whose cause a hint in
+    `known` (found from the student's files) already names: the files say where, the output only
+    that it happened."""
+    said = {causes.of(k) for k in known}
     seen: List[str] = []
     for path in sorted(glob.glob(os.path.join(folder, "*.log"))):
-        try:
-            size = os.path.getsize(path)
-            with open(path, "rb") as f:
-                f.seek(max(0, size - 4 * LOG_TAIL_BYTES))
-                text = f.read().decode("utf-8", errors="replace")
-        except OSError:
-            continue
-        seen.extend(h for h in scripts.output_problems(text) if h not in seen)
+        read = _tail(path, 4 * LOG_TAIL_BYTES)
+        if read is not None:
+            seen.extend(h for h in scripts.output_problems(read[1]) if h not in seen and causes.of(h) not in said)
     return seen
 
 

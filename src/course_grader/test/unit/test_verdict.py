@@ -102,3 +102,13 @@ def test_a_students_text_quotes_their_paths_from_the_package_down_even_cut_at_th
             "File \"/tmp/g/grades/_work/alice/ws/src/chatter/scripts/talker.py\"; see /tmp/g/grades/_work/alice/runs/x")
     assert verdict.without_grader_paths(text, [src, work, out]) == (
         "ending with 'chatter/scripts/talker.py\", line 3'\nFile \"chatter/scripts/talker.py\"; see runs/x")
+
+
+def test_what_a_run_printed_adds_only_causes_the_files_did_not_name(tmp_path):
+    (tmp_path / "talker.py.log").write_text("talker.py: 2: import: not found\n"
+                                            "NameError: name 'raw_input' is not defined\n")
+    found = verdict.output_hints(str(tmp_path))
+    assert [getattr(h, "cause", "") for h in found] == ["no_shebang", "python2"]
+    from course_milestones import causes
+    from_files = [causes.finding("no_shebang", "chatter/scripts/talker.py has no #! line")]
+    assert [getattr(h, "cause", "") for h in verdict.output_hints(str(tmp_path), from_files)] == ["python2"]

@@ -33,6 +33,7 @@ from traitlets import Float, Integer, default
 from course_hub.logins import FailedLogins
 from course_hub.passwords import RIGHT, TOO_SHORT, check_password
 
+
 class CourseAuthenticator(FirstUseAuthenticator):
     """FirstUseAuthenticator, off the event loop and with failed logins limited."""
 

@@ -67,9 +67,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         print("hub_grade: %s holds no users/ folder: is it the hub's data folder?" % args.data, file=sys.stderr)
         return 2
     stamp = args.stamp or datetime.datetime.now(datetime.timezone.utc).strftime("%Y%m%dT%H%M%SZ")
-    for folder, mode in hubconfig.data_modes(args.data).items():
-        os.makedirs(folder, mode=mode, exist_ok=True)
-        os.chmod(folder, mode)
+    hubconfig.lay_out(args.data)
     class_dir = os.path.join(args.data, "snapshots", stamp)
     out = args.out or os.path.join(args.data, "grades", stamp)
     if os.path.exists(class_dir):
@@ -88,13 +86,12 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     os.makedirs(out, mode=0o711, exist_ok=True)
     done = subprocess.run(grade_command(class_dir, out, args.only, args.jobs), check=False)
     record_not_graded(out, not_graded)
-    written = grading.publish(out, args.data, students, stamp, not_graded)
+    written, failed = grading.publish(out, args.data, students, stamp, not_graded)
     os.chmod(out, 0o700)  # done: no later grading's student code reads it
-    failed = {user: where for user, where in written.items() if where.startswith("not written")}
-    for user, where in failed.items():
-        print("hub_grade: %s's report %s" % (user, where), flush=True)
+    for user, why in failed.items():
+        print("hub_grade: %s's report not written: %s" % (user, why), flush=True)
     print("hub_grade: reports copied to %d students' ~/grades/%s; the gradebook: %s" % (
-        len(written) - len(failed), stamp, os.path.join(out, "gradebook.csv")), flush=True)
+        len(written), stamp, os.path.join(out, "gradebook.csv")), flush=True)
     if not_graded:
         print("hub_grade: %d student(s) NOT GRADED (%s): see %s" % (
             len(not_graded), ", ".join(sorted(not_graded)), os.path.join(out, NOT_GRADED)), flush=True)

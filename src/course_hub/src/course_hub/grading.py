@@ -29,7 +29,7 @@ import os
 import shutil
 import stat
 from dataclasses import dataclass, field
-from typing import Dict, Iterable, List, Optional
+from typing import Dict, Iterable, List, Optional, Tuple
 
 from course_hub import disks, names
 
@@ -208,13 +208,14 @@ def _number(value: object) -> str:
 
 
 def publish(grades: str, data_dir: str, users: Iterable[str], stamp: str,
-            not_graded: Optional[Dict[str, str]] = None) -> Dict[str, str]:
+            not_graded: Optional[Dict[str, str]] = None) -> Tuple[Dict[str, str], Dict[str, str]]:
     """Copy each user's own folder of the grader's output into their grades folder, under
-    `stamp`, with report.txt; a user in `not_graded` gets only a report.txt saying why. {user:
-    the folder written, or why it could not be (their disk full, ...)}. Users the grader has no
-    folder for, and who are not in `not_graded`, are left out."""
+    `stamp`, with report.txt; a user in `not_graded` gets only a report.txt saying why. ({user:
+    the folder written}, {user: why it could not be written (their disk full, ...)}). Users the
+    grader has no folder for, and who are not in `not_graded`, are left out."""
     not_graded = not_graded or {}
     written: Dict[str, str] = {}
+    failed: Dict[str, str] = {}
     for user in sorted(users):
         own = os.path.join(grades, user)
         if not os.path.isdir(own) and user not in not_graded:
@@ -224,8 +225,8 @@ def publish(grades: str, data_dir: str, users: Iterable[str], stamp: str,
             _publish_one(own, target, stamp, not_graded.get(user))
             written[user] = target
         except OSError as err:
-            written[user] = "not written: %s" % err
-    return written
+            failed[user] = str(err)
+    return written, failed
 
 
 def _publish_one(own: str, target: str, stamp: str, not_graded: Optional[str]) -> None:

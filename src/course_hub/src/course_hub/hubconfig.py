@@ -51,6 +51,7 @@ LOCAL_DOMAIN = "hub.localhost"
 STUDENT_HOME = "/home/student"         # the student image's user (docker/Dockerfile)
 SRC_IN_CONTAINER = STUDENT_HOME + "/catkin_ws/src"
 GRADES_IN_CONTAINER = STUDENT_HOME + "/grades"
+DEFAULT_HUB_PORT = 8081
 CULLER_SERVICE = "idle-culler"
 USERNS = "auto"
 # What `make jupyter` runs, exec'd down to the server itself (bash, rosrun, the start-up, then
@@ -71,7 +72,7 @@ class HubSettings:
     # when bind_url is on loopback (*.localhost is loopback); a class sets its public address,
     # with wildcard DNS and a wildcard TLS certificate (docs/hub.md)
     subdomain_host: str = "auto"
-    hub_port: int = 8081                            # the hub's API, which the containers call (all addresses)
+    hub_port: int = DEFAULT_HUB_PORT                # the hub's API, which the containers call (all addresses)
     mem_limit: str = "2G"
     cpu_limit: float = 1.0
     pids_limit: int = 1024
@@ -122,14 +123,13 @@ def make_hooks(settings: HubSettings):
     (every other user's page)."""
     disk_size = disks.size_bytes(settings.disk_limit)
 
-    def prepare(spawner: Any) -> str:
-        place = names.places(settings.data_dir, spawner.user.name)
+    def prepare(spawner: Any, place: names.Places) -> str:
         disks.ensure(place, disk_size, settings.student_uid)
         return ensure_network(spawner.client, place)
 
     async def pre_spawn(spawner: Any) -> None:
         place = names.places(settings.data_dir, spawner.user.name)
-        gateway = await asyncio.get_running_loop().run_in_executor(None, prepare, spawner)
+        gateway = await asyncio.get_running_loop().run_in_executor(None, prepare, spawner, place)
         spawner.network_name = place.network
         for trait, value in mounts(place).items():
             setattr(spawner, trait, value)
@@ -197,6 +197,13 @@ def public_host(settings: HubSettings) -> str:
         "so that each student's server has its own origin (docs/hub.md)" % settings.bind_url)
 
 
+def lay_out(data: str) -> None:
+    """Make the data folder's layout (data_modes) and set its modes, whatever they were."""
+    for folder, mode in data_modes(data).items():
+        os.makedirs(folder, mode=mode, exist_ok=True)
+        os.chmod(folder, mode)
+
+
 def data_modes(data: str) -> Dict[str, int]:
     """The data folder's layout and modes. Root's alone: the students' disks and mount points, the
     snapshots of every grading; the grader's sandbox user passes through `data` and `grades` to the
@@ -235,9 +242,7 @@ def apply(c: Any, settings: HubSettings) -> classlist.ClassList:
     data = settings.data_dir
     os.makedirs(data, mode=0o700, exist_ok=True)
 
-    for folder, mode in data_modes(data).items():
-        os.makedirs(folder, mode=mode, exist_ok=True)
-        os.chmod(folder, mode)
+    lay_out(data)
     c.JupyterHub.bind_url = settings.bind_url
     # every user's server on a host of its own: a page a student serves cannot act with the hub's
     # cookies (a TA's, when the TA opens it)

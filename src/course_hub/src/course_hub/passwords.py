@@ -57,7 +57,7 @@ def check_password(dbm_path: str, name: str, password: str, min_length: int = 0)
             return RIGHT if bcrypt.checkpw(password.encode("utf8"), stored) else WRONG
         if len(password) < min_length:
             return TOO_SHORT
-        db[key] = bcrypt.hashpw(password.encode("utf8"), bcrypt.gensalt())
+        db[key] = bcrypt_hash(password)
         return RIGHT
 
 

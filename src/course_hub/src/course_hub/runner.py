@@ -24,13 +24,13 @@ import time
 from typing import Dict, List, Mapping, Optional, Sequence
 
 from course_hub import firewall
+from course_hub.hubconfig import DEFAULT_HUB_PORT
 
 # netavark, not CNI: podman installed without its recommends picks CNI, whose internal networks
 # have no gateway the containers could reach the hub on
 PODMAN = ["podman", "--runtime", "runc", "--cgroup-manager=cgroupfs", "--network-backend", "netavark"]
 DEFAULT_SOCKET = "/run/ros-course-hub/podman.sock"
 API_PORT_VAR = "HUB_API_PORT"  # the hub's config reads it too (deploy/jupyterhub/jupyterhub_config.py)
-DEFAULT_API_PORT = 8081
 SOCKET_TIMEOUT_S = 120.0  # podman takes seconds to start, minutes on a loaded machine
 STOP_TIMEOUT_S = 60.0
 
@@ -82,7 +82,7 @@ def stop(proc: Optional[subprocess.Popen]) -> None:
         proc.wait()
 
 
-def hub_env(env: Mapping[str, str], docker_host: str, api_port: int = DEFAULT_API_PORT) -> Dict[str, str]:
+def hub_env(env: Mapping[str, str], docker_host: str, api_port: int = DEFAULT_HUB_PORT) -> Dict[str, str]:
     """The hub's environment: DOCKER_HOST and its API port set, and no ROS workspace's Python on
     its path (the hub runs from its own venv)."""
     clean = {k: v for k, v in env.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
@@ -95,10 +95,10 @@ def parse(argv: Sequence[str]) -> argparse.Namespace:
     parser = argparse.ArgumentParser(prog="hub", description=__doc__.split("\n\n")[0])
     parser.add_argument("--config", required=True, help="JupyterHub's config file (deploy/jupyterhub/jupyterhub_config.py)")
     parser.add_argument("--jupyterhub", required=True, help="the jupyterhub executable (.venv-hub/bin/jupyterhub)")
-    parser.add_argument("--api-port", type=int, default=int(os.environ.get(API_PORT_VAR) or DEFAULT_API_PORT),
+    parser.add_argument("--api-port", type=int, default=int(os.environ.get(API_PORT_VAR) or DEFAULT_HUB_PORT),
                         help="the hub's API port, which the containers call (default $%s or %d); it is closed to "
                         "everything but loopback and the containers' bridges while the hub runs (course_hub.firewall)"
-                        % (API_PORT_VAR, DEFAULT_API_PORT))
+                        % (API_PORT_VAR, DEFAULT_HUB_PORT))
     parser.add_argument("--socket", default=DEFAULT_SOCKET, help="where podman's Docker API listens when DOCKER_HOST "
                         "does not answer (default %s)" % DEFAULT_SOCKET)
     return parser.parse_args(list(argv))

@@ -82,9 +82,7 @@ def test_the_graders_sandbox_user_reads_no_snapshot_no_finished_grading_and_no_s
         os.makedirs(os.path.join(data, "users", "alice", "src", "pkg"))
         with open(os.path.join(data, "users", "alice", "src", "pkg", "answer.py"), "w") as out:
             out.write("alice's answer")
-        for folder, mode in hubconfig.data_modes(data).items():
-            os.makedirs(folder, exist_ok=True)
-            os.chmod(folder, mode)
+        hubconfig.lay_out(data)
         grading.snapshot(data, os.path.join(data, "snapshots", "first"), ["alice"])
         finished = os.path.join(data, "grades", "first")
         os.makedirs(os.path.join(finished, "alice"))

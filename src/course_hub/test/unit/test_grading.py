@@ -44,7 +44,8 @@ def test_each_student_gets_their_own_results_and_a_summary_never_the_class_files
         {"name": "chatter", "score": 10, "max_score": 10, "status": "passed", "output": "ok"}]}))
     (grades / "gradebook.csv").write_text("student,chatter\nalice,10\nbob,0\n")
     (grades / "report.html").write_text("everyone")
-    written = grading.publish(str(grades), str(tmp_path / "data"), ["alice", "bob"], "deadline")
+    written, failed = grading.publish(str(grades), str(tmp_path / "data"), ["alice", "bob"], "deadline")
+    assert failed == {}
     assert list(written) == ["alice"]
     mine = tmp_path / "data" / "users" / "alice" / "grades" / "deadline"
     assert sorted(os.listdir(mine)) == ["chatter", "report.txt", "results.json"]
@@ -132,7 +133,7 @@ def test_too_many_files_or_too_deep_is_refused_with_the_bound(tmp_path):
 
 
 def test_a_student_not_graded_gets_a_report_saying_why(tmp_path):
-    written = grading.publish(str(tmp_path / "grades"), str(tmp_path / "data"), ["alice", "bob"], "deadline",
+    written, _ = grading.publish(str(tmp_path / "grades"), str(tmp_path / "data"), ["alice", "bob"], "deadline",
                               {"alice": "your catkin_ws/src holds more than 200 MB"})
     assert list(written) == ["alice"]
     report = tmp_path / "data" / "users" / "alice" / "grades" / "deadline" / "report.txt"

@@ -14,8 +14,9 @@ from __future__ import annotations
 
 import os
 import re
-from typing import Dict, Iterable, List, NamedTuple, Optional, Sequence, Set
+from typing import Callable, Dict, Iterable, List, NamedTuple, Optional, Sequence, Set
 
+from course_grader import student_files
 from course_milestones import causes
 
 SUMMARY_LINES = 25
@@ -34,6 +35,15 @@ _MAKE_FAILED = re.compile(r"^make\[\d+\]: \*\*\* \[(?P<package>[^\s:\]]*?)/?CMak
                           r"build\.make:\d+: (?P<output>[^\]]+)\] Error")
 _LINKER_DONE = re.compile(r"^collect2: error: ld returned")
 _NO_PACKAGE = re.compile(r'Could not find a package configuration file provided by\s+"(?P<package>[^"]+)"')
+# catkin_package() CATKIN_DEPENDS on a package found but not in package.xml (the message wraps).
+_NOT_BUILD_DEPEND = re.compile(r"catkin package '(?P<dep>[^']+)' has been find_package\(\)-ed but\s+is not listed as a "
+                               r"build dependency in the package\.xml")
+_CATKIN_PACKAGE_CALL = re.compile(r"^\s*(?P<folder>[^\s/][^\s]*)/CMakeLists\.txt:\d+ \(catkin_package\)", re.MULTILINE)
+# catkin_pkg refusing a tag of another format (format 1 is a <package> without format="...").
+_OTHER_FORMAT_TAGS = re.compile(r'The manifest of package "(?P<package>[^"]+)" \(with format version (?P<format>\d+)\) '
+                                r"must not contain the following tags: (?P<tags>[\w, ]+)")
+_MANIFEST_ERRORS = re.compile(r"Error\(s\) in package '(?P<folder>[^\s/'][^\s']*)/package\.xml'")
+_FORMAT = re.compile(r"<package\b[^>]*?\bformat\s*=\s*[\"'](?P<format>\d+)[\"']")
 _MESSAGE_PACKAGE = re.compile(r"^-- (?P<package>[\w-]+): \d+ messages, \d+ services", re.MULTILINE)
 # g++ quotes names with ‘’ in a UTF-8 locale and with '' in the C locale.
 _Q = "[‘']"
@@ -82,14 +92,25 @@ class Target(NamedTuple):
 
 
 def summarise(log: str, ws: str, lines: int = SUMMARY_LINES) -> str:
-    """The reason a catkin_make log in workspace `ws` failed (see the module docstring)."""
+    """The reason a catkin_make log in workspace `ws` failed (see the module docstring); a
+    package.xml the log blames is read from `ws` (as the student's: no link followed)."""
     text = relative_paths(log, ws)
+
+    def package_xml(folder: str) -> Optional[str]:
+        data = student_files.read_file(os.path.join(ws, "src"), folder + "/package.xml", 64 * 1024)
+        return data.decode("utf-8", "replace") if data is not None else None
+    return summarise_text(text, package_xml, lines)
+
+
+def summarise_text(text: str, package_xml: Callable[[str], Optional[str]], lines: int = SUMMARY_LINES) -> str:
+    """summarise's work on a log whose paths are already the student's; `package_xml(folder)` is
+    the text of `<folder>/package.xml` (a folder of the workspace's src), None when unreadable."""
     all_lines = [_strip_colour(line.rstrip()) for line in text.splitlines()]
     targets = _failed_targets(all_lines)
     compiled = _compiler_errors(all_lines)
     undefined = _undefined(all_lines, targets)
     linked = _linker_errors(all_lines, undefined)
-    hints = _hints(all_lines, compiled, undefined, targets, message_packages(text))
+    hints = _hints(all_lines, compiled, undefined, targets, message_packages(text)) + _package_xml_hints(text, package_xml)
     first = compiled + linked
     rest = [] if first else _error_blocks(all_lines)
     if not first and not rest:
@@ -197,8 +218,9 @@ def _target_of(name: str, targets: Dict[str, Target]) -> Target:
 
 
 def _error_blocks(lines: Sequence[str]) -> List[str]:
-    """Each other error block: the error line and the indented or blank lines after it (CMake's
-    reason and call stack, a Python traceback's last line); make's own summary lines left out."""
+    """Each other error block: the error line and the indented, listed or blank lines after it
+    (CMake's reason and call stack, catkin_pkg's `- ` list of a package.xml's errors, a Python
+    traceback's last line); make's own summary lines left out."""
     kept: List[str] = []
     i = 0
     while i < len(lines):
@@ -207,7 +229,7 @@ def _error_blocks(lines: Sequence[str]) -> List[str]:
             continue
         block = [lines[i]]
         i += 1
-        while i < len(lines) and (not lines[i] or lines[i][0].isspace() or lines[i].startswith("Call Stack")):
+        while i < len(lines) and (not lines[i] or lines[i][0].isspace() or lines[i].startswith(("Call Stack", "- "))):
             block.append(lines[i])
             i += 1
         if block[0].startswith("Traceback") and i < len(lines):
@@ -258,6 +280,55 @@ def _hints(lines: Sequence[str], compiled: Sequence[str], undefined: Sequence["U
                          "its spelling in find_package(...) and in package.xml" % m.group("package")))
             break
     return [h for i, h in enumerate(hints) if h not in hints[:i]]  # each once, its cause kept
+
+
+def package_format(text: Optional[str]) -> Optional[int]:
+    """The format of a package.xml's text (1 when its <package> tag names none), None when unknown."""
+    if text is None or "<package" not in text:
+        return None
+    m = _FORMAT.search(text)
+    return int(m.group("format")) if m else 1
+
+
+def _package_xml_hints(text: str, package_xml: Callable[[str], Optional[str]]) -> List[causes.Finding]:
+    """What to write in package.xml when catkin refuses it: a dependency the build uses and the file
+    does not list (in the tags of the file's own format), or a tag its format does not have."""
+    hints: List[causes.Finding] = []
+    missing = _NOT_BUILD_DEPEND.search(text)
+    if missing:
+        dep = missing.group("dep")
+        call = _CATKIN_PACKAGE_CALL.search(text, missing.end())
+        folder = call.group("folder") if call else ""
+        where = "%s/package.xml" % folder if folder else "package.xml"
+        manifest = package_xml(folder) if folder else None
+        form = package_format(manifest)
+        if form == 1:
+            has_run = re.search(r"<run_depend>\s*%s\s*</run_depend>" % re.escape(dep), manifest or "") is not None
+            add = ("<build_depend>%s</build_depend> next to its <run_depend>%s</run_depend>" % (dep, dep) if has_run
+                   else "<build_depend>%s</build_depend> and <run_depend>%s</run_depend>" % (dep, dep))
+            hint = ("hint: %s is format 1 (its <package> tag says no format=\"2\"), where each dependency is named "
+                    "once per use: add %s (<depend> exists only from format 2)" % (where, add))
+        elif form is not None:
+            hint = ("hint: catkin_package() names %s, which find_package(catkin REQUIRED COMPONENTS ...) found, and "
+                    "%s (format %d) does not list it: add <depend>%s</depend>" % (dep, where, form, dep))
+        else:
+            hint = ("hint: add %s to %s: <depend>%s</depend> in a <package format=\"2\">, or <build_depend>%s"
+                    "</build_depend> and <run_depend>%s</run_depend> in a format 1 <package>" % (dep, where, dep, dep, dep))
+        hints.append(causes.finding("package_xml", hint))
+    other = _OTHER_FORMAT_TAGS.search(text)
+    if other:
+        form, tags = int(other.group("format")), [t.strip() for t in other.group("tags").split(",") if t.strip()]
+        named = _MANIFEST_ERRORS.search(text)
+        where = "%s/package.xml" % named.group("folder") if named else "the package.xml of %s" % other.group("package")
+        if form == 1:
+            hint = ("hint: %s is read as format 1 (its <package> tag says no format=\"2\"), which has no <%s>: "
+                    "write <package format=\"2\"> (where <%s> is right), or name each dependency as <build_depend> and "
+                    "<run_depend>" % (where, ">, <".join(tags), ">, <".join(tags)))
+        else:
+            hint = ("hint: %s is format %d, which has no <%s>: write <exec_depend> for <run_depend>, or <depend> for a "
+                    "package needed to build and to run" % (where, form, ">, <".join(tags)))
+        hints.append(causes.finding("package_xml", hint))
+    return hints
 
 
 def _compiled_by(source: str, targets: Dict[str, Target]) -> Target:

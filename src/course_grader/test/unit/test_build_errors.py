@@ -3,7 +3,7 @@ with the student's paths, then a hint for the usual mistakes; warnings never cou
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from course_grader.build_errors import message_packages, relative_paths, summarise
+from course_grader.build_errors import message_packages, package_format, relative_paths, summarise
 
 WS = "/tmp/grades/_work/carol/ws"
 
@@ -194,3 +194,78 @@ def test_a_name_that_only_looks_like_a_placeholder_gets_no_noetic_hint():
     for name in ("_10", "x_1", "_1a", "ROS"):
         log = UNDECLARED_LOG.replace("'_1'", "'%s'" % name).replace("'_2'", "'%s'" % name)
         assert not [line for line in summarise(log, WS).splitlines() if line.startswith("hint:")], name
+
+
+FORMAT1_TAGS_LOG = """Base path: %(ws)s
+Source space: %(ws)s/src
+Creating symlink "%(ws)s/src/CMakeLists.txt" pointing to "/usr/share/catkin/cmake/toplevel.cmake"
+Error(s) in package '%(ws)s/src/lab2/src/chatter/package.xml':
+Error(s):
+- The manifest of package "chatter" (with format version 1) must not contain the following tags: depend, exec_depend
+""" % {"ws": WS}
+
+NOT_BUILD_DEPEND_LOG = """-- +++ processing catkin package: 'chatter'
+-- ==> add_subdirectory(chatter)
+CMake Error at /usr/share/catkin/cmake/catkin_package.cmake:198 (message):
+  catkin_package() the catkin package 'rospy' has been find_package()-ed but
+  is not listed as a build dependency in the package.xml
+Call Stack (most recent call first):
+  /usr/share/catkin/cmake/catkin_package.cmake:102 (_catkin_package)
+  %(ws)s/src/chatter/CMakeLists.txt:4 (catkin_package)
+
+
+-- Configuring incomplete, errors occurred!
+Invoking "cmake" failed
+""" % {"ws": WS}
+
+FORMAT1 = """<?xml version="1.0"?>
+<package>
+  <name>chatter</name>
+  <buildtool_depend>catkin</buildtool_depend>
+  <build_depend>std_msgs</build_depend>
+  <run_depend>rospy</run_depend>
+</package>
+"""
+
+
+def test_format1_tags_of_format2_get_the_format_attribute_hint():
+    reason = summarise(FORMAT1_TAGS_LOG, WS)
+    assert reason.cause == "package_xml"
+    assert "must not contain the following tags: depend, exec_depend" in reason  # catkin's own words kept
+    assert "hint: lab2/src/chatter/package.xml is read as format 1" in reason
+    assert 'write <package format="2">' in reason and "<depend>, <exec_depend>" in reason
+    assert WS not in reason
+
+
+def test_a_format1_manifest_missing_a_build_dependency_gets_the_format1_tags(tmp_path):
+    (tmp_path / "src" / "chatter").mkdir(parents=True)
+    (tmp_path / "src" / "chatter" / "package.xml").write_text(FORMAT1)
+    reason = summarise(NOT_BUILD_DEPEND_LOG.replace(WS, str(tmp_path)), str(tmp_path))
+    assert reason.cause == "package_xml"
+    assert "hint: chatter/package.xml is format 1" in reason
+    assert "add <build_depend>rospy</build_depend> next to its <run_depend>rospy</run_depend>" in reason
+
+
+def test_a_format2_manifest_missing_a_dependency_gets_depend(tmp_path):
+    (tmp_path / "src" / "chatter").mkdir(parents=True)
+    (tmp_path / "src" / "chatter" / "package.xml").write_text(FORMAT1.replace("<package>", '<package format="2">'))
+    reason = summarise(NOT_BUILD_DEPEND_LOG.replace(WS, str(tmp_path)), str(tmp_path))
+    assert "(format 2) does not list it: add <depend>rospy</depend>" in reason
+
+
+def test_a_manifest_that_is_a_link_is_not_read_and_both_forms_are_given(tmp_path):
+    secret = tmp_path / "secret.xml"
+    secret.write_text(FORMAT1.replace("<package>", '<package format="3">'))
+    (tmp_path / "ws" / "src" / "chatter").mkdir(parents=True)
+    (tmp_path / "ws" / "src" / "chatter" / "package.xml").symlink_to(secret)
+    ws = str(tmp_path / "ws")
+    reason = summarise(NOT_BUILD_DEPEND_LOG.replace(WS, ws), ws)
+    assert "format 3" not in reason
+    assert "<depend>rospy</depend> in a <package format=\"2\">, or <build_depend>rospy</build_depend>" in reason
+
+
+@given(st.text(max_size=300))
+@settings(max_examples=200, deadline=None)
+def test_any_package_xml_gives_a_format_or_none(text):
+    form = package_format(text)
+    assert form is None or form >= 0

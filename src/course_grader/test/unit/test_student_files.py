@@ -45,3 +45,19 @@ def test_a_big_file_keeps_its_end_and_the_count_is_bounded(tmp_path):
 
 def test_a_missing_folder_copies_nothing(tmp_path):
     assert copy_logs(str(tmp_path / "none"), str(tmp_path / "out")) == []
+
+
+def test_one_file_is_read_only_without_links_on_its_way(tmp_path):
+    from course_grader.student_files import read_file
+    (tmp_path / "grader").mkdir()
+    (tmp_path / "grader" / "package.xml").write_text("secret")
+    (tmp_path / "ws" / "src" / "pkg").mkdir(parents=True)
+    (tmp_path / "ws" / "src" / "pkg" / "package.xml").write_text("<package/>")
+    os.symlink(tmp_path / "grader", tmp_path / "ws" / "src" / "linked")
+    os.mkfifo(tmp_path / "ws" / "src" / "pipe")
+    root = str(tmp_path / "ws" / "src")
+    assert read_file(root, "pkg/package.xml") == b"<package/>"
+    assert read_file(root, "linked/package.xml") is None
+    assert read_file(root, "pkg/../linked/package.xml") is None
+    assert read_file(root, "pipe") is None
+    assert read_file(root, "nothing/package.xml") is None

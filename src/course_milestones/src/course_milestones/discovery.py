@@ -59,10 +59,25 @@ def _is_executable(path: str) -> bool:
     return stat.S_ISREG(mode) and bool(mode & (stat.S_IXUSR | stat.S_IXGRP | stat.S_IXOTH))
 
 
-def chmod_hint(pkg: str) -> str:
-    """' (a.py starts with #! but is not executable ...)' when rosrun cannot start some of the
-    package's scripts (course_milestones.scripts says why), else ''."""
+def launch_file_names(pkg: str) -> List[str]:
+    """Names of the .launch files anywhere in `pkg` (what `roslaunch pkg <TAB>` offers)."""
+    found = []
+    for dirpath, dirnames, filenames in os.walk(package_dir(pkg)):
+        dirnames[:] = [d for d in dirnames if not d.startswith(".")]
+        found.extend(f for f in filenames if f.endswith(".launch"))
+    return sorted(set(found))
+
+
+def script_hints(pkg: str) -> str:
+    """Why rosrun may not find the student's nodes, for a message saying no executable of `pkg` did
+    what was asked: ' (a.py starts with #! but is not executable ...)' when some scripts cannot be
+    started (course_milestones.scripts says why), and the package's launch files when it has any
+    (the text runs these nodes with rosrun: a launch file alone is not what it asks); else ''."""
     problems = script_problems(package_dir(pkg))
+    launches = launch_file_names(pkg)
+    if launches:
+        problems.append("the package's launch files (%s) are not started: the text runs these nodes with "
+                        "`rosrun %s <script>`, so each must be an executable of the package" % (", ".join(launches), pkg))
     return " (%s)" % "; ".join(problems) if problems else ""
 
 

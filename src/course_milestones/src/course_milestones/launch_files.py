@@ -27,7 +27,7 @@ import roslaunch.rlutil
 import rosgraph.names
 
 from course_milestones import students
-from course_milestones.discovery import package_dir
+from course_milestones.discovery import launch_file_names, package_dir
 from course_milestones.launch_dump import FORMAT
 from course_testkit.nodes import find_executable
 
@@ -61,18 +61,9 @@ class LaunchConfig(NamedTuple):
     nodes: Tuple[LaunchNode, ...]
 
 
-def names_in(pkg: str) -> List[str]:
-    """Names of the .launch files anywhere in `pkg` (what `roslaunch pkg <TAB>` offers)."""
-    found = []
-    for dirpath, dirnames, filenames in os.walk(package_dir(pkg)):
-        dirnames[:] = [d for d in dirnames if not d.startswith(".")]
-        found.extend(f for f in filenames if f.endswith(".launch"))
-    return sorted(set(found))
-
-
 def missing_launch_file(pkg: str, filename: str) -> str:
     """A sentence for the student when `filename` is not in `pkg`, or "" when it is."""
-    found = names_in(pkg)
+    found = launch_file_names(pkg)
     if filename in found:
         return ""
     return "no launch file %s in package %s (found: %s)" % (filename, pkg, ", ".join(found) or "none")

@@ -10,6 +10,7 @@ import tempfile
 
 from course_testkit.isolation import free_port
 from course_testkit.nodes import find_executable
+from course_workbench import startup
 
 
 def start(env_changes: dict) -> subprocess.CompletedProcess:
@@ -20,13 +21,16 @@ def start(env_changes: dict) -> subprocess.CompletedProcess:
 
 
 def test_a_busy_port_says_which_and_how_to_pick_another():
-    with socket.socket() as taken:
-        taken.bind(("127.0.0.1", 0))
+    # Where the workbench listens here: $JUPYTER_ADDRESS as it reads it (0.0.0.0 in the course image),
+    # else its default 127.0.0.1. The port is taken on that address and the message names it.
+    address = startup.parse([], os.environ).address
+    with socket.socket(socket.AF_INET6 if ":" in address else socket.AF_INET) as taken:
+        taken.bind((address, 0))
         taken.listen(1)
         port = taken.getsockname()[1]
         done = start({"JUPYTER_PORT": str(port)})
     assert done.returncode == 2, done.stdout + done.stderr
-    assert "port %d is already in use on 127.0.0.1" % port in done.stderr
+    assert "port %d is already in use on %s" % (port, address) in done.stderr
     assert "JUPYTER_PORT=%d make jupyter" % (port + 1) in done.stderr
     assert "Traceback" not in done.stderr + done.stdout
 

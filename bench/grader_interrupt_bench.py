@@ -16,7 +16,7 @@ from pathlib import Path
 
 from course_testkit.gradings import processes_of
 from course_testkit.samples import SAMPLES_DIR, materialise
-from course_testkit.waiting import wait_for
+from course_checks.waiting import wait_for
 
 CLASS = ["lab2_chatter_scripts", "bad_ignore_sigint", "bad_hang", "bad_fork", "bad_crash", "attack_fill_tmp"]
 RUNNING = 12  # processes of the grading: about two runs under way

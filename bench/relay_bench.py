@@ -18,7 +18,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from rosenv import private_master  # noqa: E402
 
-from course_testkit.nodes import NodeProcess  # noqa: E402
+from course_checks.nodes import NodeProcess  # noqa: E402
 
 RELAYS = [("ours", "course_relay", "relay"), ("topic_tools", "topic_tools", "relay")]
 

@@ -140,7 +140,7 @@ def spawn_probe(master, caller_id: str) -> bool:
 
 
 def launch_command(path: str, scratch: Path) -> list:
-    from course_testkit.nodes import find_executable
+    from course_checks.nodes import find_executable
     if path == "rosrun":
         return ["rosrun", "turtlesim", "turtlesim_node"]
     if path == "executable":

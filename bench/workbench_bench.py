@@ -33,9 +33,9 @@ from pathlib import Path
 from typing import Dict, List, Optional, Sequence
 
 from course_sandbox.procs import cmdline, proportional_bytes
-from course_testkit.isolation import pids_with_token
+from course_checks.isolation import pids_with_token
 from course_testkit.rosbridge import frame_rate
-from course_testkit.waiting import wait_for
+from course_checks.waiting import wait_for
 from course_testkit.workbench import Workbench
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -11,7 +11,9 @@ What a package's Python may import from another package of this workspace depend
 - a tool imports libraries and messages; the test support imports libraries and messages;
 - test code (a package's `test/` folder) may also import the test support, and a simulator's
   modules, to check a client against the simulator's own numbers;
-- the grading code (milestones, grader) may import anything: it checks everyone.
+- the grading code (milestones, grader) may import anything but the test support: it checks
+  everyone, and what it needs at run time is a library (course_checks), so that no test framework
+  (pytest, selenium, hypothesis) is on the grader's run path.
 
 Talking over ROS (a launch file starting another package's node) is not an import and is free.
 """
@@ -35,8 +37,10 @@ MAY_IMPORT: Dict[str, Set[str]] = {
     "library": {"library"},
     "tool": {"library"},
     "test_support": {"library"},
-    "grading": set(ROLES),
+    "grading": set(ROLES) - {"test_support"},
 }
+# What only tests may need: never a run dependency of grading, however indirect.
+TEST_FRAMEWORKS = {"python3-pytest", "python3-selenium", "python3-hypothesis"}
 
 
 def roles(*srcs: str) -> Dict[str, str]:
@@ -77,17 +81,53 @@ def test_imports_follow_the_roles():
     assert not problems, "\n".join(problems)
 
 
-def test_no_exercise_imports_another_exercise(tmp_path):
-    """The rule above must catch the mistake it exists for: lab2 importing mybot_teleop's code."""
-    for name, role, code in (("ex_a", "exercise", "from ex_b_core.keys import Decoder\n"),
-                             ("ex_b", "exercise", "")):
+def make_packages(tmp_path: Path, module: str, specs) -> None:
+    """Packages under tmp_path/src, each (name, role, code of its module <name>_core.<module>)."""
+    for name, role, code in specs:
         pkg = tmp_path / "src" / name
         (pkg / "src" / (name + "_core")).mkdir(parents=True)
         (pkg / "src" / (name + "_core") / "__init__.py").write_text("")
-        (pkg / "src" / (name + "_core") / "keys.py").write_text(code)
+        (pkg / "src" / (name + "_core") / (module + ".py")).write_text(code)
         (pkg / "package.xml").write_text('<package format="2"><name>%s</name><export><course_role>%s'
                                          '</course_role></export></package>' % (name, role))
+
+
+def test_no_exercise_imports_another_exercise(tmp_path):
+    """The rule above must catch the mistake it exists for: lab2 importing mybot_teleop's code."""
+    make_packages(tmp_path, "keys", (("ex_a", "exercise", "from ex_b_core.keys import Decoder\n"),
+                                     ("ex_b", "exercise", "")))
     assert violations(str(tmp_path / "src")) == ["ex_a/src/ex_a_core/keys.py (exercise) imports ex_b_core.keys from ex_b (exercise)"]
+
+
+def run_path(name: str, pkgs: Dict[str, str]) -> Dict[str, str]:
+    """Every run dependency reachable from package `name` (key -> the package that declares it)."""
+    reached, todo = {}, [name]
+    while todo:
+        current = todo.pop()
+        for dep in sorted(scan.declared(pkgs[current])[0]):
+            if dep not in reached:
+                reached[dep] = current
+                if dep in pkgs:
+                    todo.append(dep)
+    return reached
+
+
+def test_grading_runs_without_test_support_or_test_frameworks():
+    pkgs = scan.packages(SRC)
+    role_of = roles(SRC)
+    for grading in sorted(n for n, r in role_of.items() if r == "grading"):
+        reached = run_path(grading, pkgs)
+        wrong = sorted("%s (declared by %s)" % (dep, by) for dep, by in reached.items()
+                       if dep in TEST_FRAMEWORKS or role_of.get(dep) == "test_support")
+        assert not wrong, "%s's run path holds what only tests need: %s" % (grading, ", ".join(wrong))
+
+
+def test_grading_importing_the_test_support_is_caught(tmp_path):
+    """The rule must catch the mistake it exists for: a check node importing course_testkit."""
+    make_packages(tmp_path, "main", (("grader", "grading", "from kit_core.browser import chromium\n"),
+                                     ("kit", "test_support", "")))
+    assert violations(str(tmp_path / "src")) == [
+        "grader/src/grader_core/main.py (grading) imports kit_core.browser from kit (test_support)"]
 
 
 def test_exercises_are_the_solutions_folder_and_nothing_else():

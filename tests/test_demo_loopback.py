@@ -14,9 +14,9 @@ import sys
 from pathlib import Path
 from typing import Dict, Iterable, Tuple
 
-from course_testkit.isolation import descendants, kill_run, new_token, pids_with_token, token_env
-from course_testkit.nodes import unbuffered_env
-from course_testkit.waiting import wait_for
+from course_checks.isolation import descendants, kill_run, new_token, pids_with_token, token_env
+from course_checks.nodes import unbuffered_env
+from course_checks.waiting import wait_for
 
 ROOT = Path(__file__).resolve().parents[1]
 DEMO = ROOT / "tools" / "demo.py"

@@ -23,9 +23,9 @@ import pytest
 
 from course_sandbox import leftovers, pids_cgroup
 from course_testkit.gradings import processes_of
-from course_testkit.nodes import NodeProcess
+from course_checks.nodes import NodeProcess
 from course_testkit.samples import SAMPLES_DIR, materialise
-from course_testkit.waiting import wait_for
+from course_checks.waiting import wait_for
 
 # Graded first (the first three), then the three still under way or queued when Ctrl+C comes.
 FIRST = ["attack_fill_disk", "lab2_chatter_scripts", "bad_ignore_sigint"]

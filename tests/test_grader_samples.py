@@ -39,7 +39,7 @@ import pytest
 from course_sandbox import levels
 from course_sandbox.policy import DEFAULT_USER
 from course_testkit.gradings import processes_of
-from course_testkit.nodes import NodeProcess
+from course_checks.nodes import NodeProcess
 from course_testkit.samples import materialise
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -20,9 +20,9 @@ from typing import Dict, List
 
 import pytest
 
-from course_testkit.isolation import pids_with_token, sourced_env
+from course_checks.isolation import pids_with_token, sourced_env
 from course_testkit.master import PrivateMaster
-from course_testkit.waiting import wait_for
+from course_checks.waiting import wait_for
 
 ROOT = Path(__file__).resolve().parents[1]
 BUILD_TIMEOUT_S = 900.0

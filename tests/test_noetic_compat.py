@@ -26,9 +26,9 @@ from typing import Dict, List, NamedTuple, Optional, Tuple
 
 import pytest
 
-from course_testkit.isolation import sourced_env
+from course_checks.isolation import sourced_env
 from course_testkit.master import PrivateMaster
-from course_testkit.waiting import wait_for
+from course_checks.waiting import wait_for
 
 ROOT = Path(__file__).resolve().parents[1]
 SAMPLES = ROOT / "tests" / "noetic_compat"

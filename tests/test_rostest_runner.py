@@ -1,4 +1,4 @@
-"""course_testkit.rostest_runner against real rostest runs of a throw-away package: the pass
+"""course_checks.rostest_runner against real rostest runs of a throw-away package: the pass
 rule, the check's own failure message, and the time limit that kills a process tree whose
 members left their session and ignore SIGINT/SIGTERM."""
 from __future__ import annotations
@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from course_testkit.rostest_runner import run_rostest
+from course_checks.rostest_runner import run_rostest
 
 PACKAGE = "runner_probe"
 CHECK = '''\

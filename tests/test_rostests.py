@@ -1,7 +1,7 @@
 """Run every package's rostest files (src/*/test/*.test and the reference solutions'
 solutions/*/test/*.test), each with its own master.
 
-They run through course_testkit.rostest_runner, the same runner and pass rule the grader uses
+They run through course_checks.rostest_runner, the same runner and pass rule the grader uses
 (exit code 0 and JUnit XML with at least one test and no failure), so they never touch a
 roscore the user may have running. A failing rostest shows its checks' messages and the end of
 its output in the pytest report.
@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from course_testkit.rostest_runner import run_rostest
+from course_checks.rostest_runner import run_rostest
 
 ROOT = Path(__file__).resolve().parents[1]
 TEST_FILES = sorted(ROOT.glob("src/*/test/*.test")) + sorted(ROOT.glob("solutions/*/test/*.test"))

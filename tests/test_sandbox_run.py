@@ -14,7 +14,7 @@ import pytest
 from course_sandbox import levels, pids_cgroup, run
 from course_sandbox.policy import DEFAULT_USER, Limits, Policy
 from course_sandbox.run import RunSandbox, capture_oneshot
-from course_testkit.waiting import wait_for
+from course_checks.waiting import wait_for
 
 ROOT = os.geteuid() == 0
 LEVEL = levels.detect(DEFAULT_USER)

@@ -9,7 +9,7 @@ import pytest
 from course_sandbox import procs
 from course_sandbox.policy import DEFAULT_USER, grading_gid
 from course_sandbox.run import end_user_processes
-from course_testkit.waiting import wait_for
+from course_checks.waiting import wait_for
 
 pytestmark = pytest.mark.skipif(os.geteuid() != 0, reason="switching to the sandbox user needs root")
 

@@ -50,7 +50,7 @@ COMMANDS = [
 def ros_env(tmp_path_factory):
     """A roscore and a turtlesim_node of our own; both stopped (with their children) afterwards."""
     from course_testkit.master import PrivateMaster
-    from course_testkit.waiting import wait_for
+    from course_checks.waiting import wait_for
 
     env = dict(os.environ, QT_QPA_PLATFORM="offscreen")
     with PrivateMaster(rosout=True, home=tmp_path_factory.mktemp("ros_home"), env=env) as master:

@@ -37,7 +37,7 @@ def scene(out_dir: Path, seconds: float = SCENE_SECONDS) -> str:
     from turtlesim.msg import Pose
     from turtlesim.srv import SetPen, Spawn, TeleportAbsolute
 
-    from course_testkit.waiting import wait_for
+    from course_checks.waiting import wait_for
 
     rospy.init_node("demo_scene")
     rospy.wait_for_service("/spawn", 30)

@@ -36,7 +36,8 @@ from podman_check import Steps, Unavailable, podman  # noqa: E402
 
 sys.path.insert(0, str(ROOT / "src" / "course_sandbox" / "src"))
 sys.path.insert(0, str(ROOT / "src" / "course_testkit" / "src"))
-from course_testkit.waiting import wait_for  # noqa: E402
+sys.path.insert(0, str(ROOT / "src" / "course_checks" / "src"))
+from course_checks.waiting import wait_for  # noqa: E402
 from course_testkit.workbench import Workbench, WorkbenchError  # noqa: E402
 
 ARCHES = ("amd64", "arm64")  # the platforms the manifest list carries (linux/<arch>)

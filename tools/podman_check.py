@@ -38,16 +38,16 @@ from typing import Dict, List, Optional, Sequence, Tuple
 ROOT = Path(__file__).resolve().parents[1]
 # course_testkit's Jupyter and rosbridge clients need tornado alone, which Debian's python3 has;
 # course_sandbox.procs reads /proc.
-sys.path[:0] = [str(ROOT / "src" / "course_testkit" / "src"), str(ROOT / "src" / "course_sandbox" / "src")]
+sys.path[:0] = [str(ROOT / "src" / p / "src") for p in ("course_testkit", "course_checks", "course_sandbox")]
 from course_sandbox import procs  # noqa: E402
 from course_testkit import student_lab  # noqa: E402
 from course_testkit.jupyter import JupyterError, JupyterServer, refused_websocket  # noqa: E402
 from course_testkit.rosbridge import drive_turtle  # noqa: E402
 # course_net is the standard library alone: imported by path, as Debian's python3 runs this
-# without ROS sourced (course_testkit.isolation, which re-exports it, needs course_sandbox).
+# without ROS sourced (course_checks.isolation, which re-exports it, needs course_sandbox).
 sys.path.insert(0, str(ROOT / "src" / "course_net" / "src"))
 from course_net.ports import free_port  # noqa: E402
-from course_testkit.waiting import wait_for  # noqa: E402
+from course_checks.waiting import wait_for  # noqa: E402
 PODMAN = ["podman", "--runtime", "runc", "--cgroup-manager=cgroupfs"]
 BASE_IMAGE = "debian:bookworm"
 # The images' tags: $COURSE_IMAGE and $INSTRUCTOR_IMAGE name others (a second checkout's, say).

@@ -123,7 +123,7 @@ def junit_failures(results: Path) -> List[str]:
 
 
 def run_tests(ws: Path, env: Dict[str, str]) -> Tests:
-    from course_testkit import isolation
+    from course_checks import isolation
     start = time.monotonic()
     token = isolation.new_token()
     try:  # one rostest at a time: the tutorials' tests time their talkers and listeners
@@ -149,7 +149,7 @@ def probe() -> int:
     from geometry_msgs.msg import Twist
     from turtlesim.msg import Pose
 
-    from course_testkit.waiting import wait_for
+    from course_checks.waiting import wait_for
 
     rospy.init_node("tutorials_check_probe", disable_signals=True)
     poses: Dict[str, Pose] = {}
@@ -201,8 +201,8 @@ class Demo(NamedTuple):
 
 def demo(flavour: str, launch: str, env: Dict[str, str]) -> Demo:
     from course_testkit.master import PrivateMaster, system_state
-    from course_testkit.nodes import NodeProcess
-    from course_testkit.waiting import wait_for
+    from course_checks.nodes import NodeProcess
+    from course_checks.waiting import wait_for
 
     start = time.monotonic()
     with PrivateMaster(env=env, timeout=START_TIMEOUT_S) as master:
@@ -299,7 +299,7 @@ def main(argv: Sequence[str]) -> int:
         if built.reason:
             print("  " + built.reason.replace("\n", "\n  "))
         ok = built.ok
-        from course_testkit.isolation import sourced_env
+        from course_checks.isolation import sourced_env
         env = sourced_env(ws / "devel" / "setup.bash") if (ws / "devel" / "setup.bash").exists() else None
         if env is not None and not args.skip_tests:
             tests = run_tests(ws, env)

@@ -10,9 +10,9 @@ from pathlib import Path
 
 import pytest
 
-from course_testkit import isolation
+from course_checks import isolation
 from course_testkit.master import PrivateMaster, rosout_registered, system_state
-from course_testkit.waiting import wait_for
+from course_checks.waiting import wait_for
 
 # A node whose child leaves the process group and ignores Ctrl+C: only the run token finds it.
 STUBBORN = r'''

@@ -16,8 +16,8 @@ from std_srvs.srv import Trigger
 
 from course_testkit.fuzz import as_float32, is_sane_pose, wild_float32s
 from course_testkit.fuzz import live_node_settings as fuzz
-from course_testkit.recorders import RosoutRecorder, TopicRecorder
-from course_testkit.waiting import wait_for
+from course_checks.recorders import RosoutRecorder, TopicRecorder
+from course_checks.waiting import wait_for
 from turtlesim.msg import Pose
 
 TWO_PI = 2.0 * math.pi

@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 
 from course_testkit.fuzz import live_node_settings as fuzz
 from course_testkit.fuzz import INT32, wild_ints
-from course_testkit.waiting import wait_for
+from course_checks.waiting import wait_for
 from pkg_interfaces.msg import ProgressAction, ProgressGoal
 from pkg_interfaces.srv import Add
 

@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 
 from course_testkit.fuzz import as_float32, is_sane_pose, wild_float32s
 from course_testkit.fuzz import live_node_settings as fuzz
-from course_testkit.recorders import TopicRecorder
+from course_checks.recorders import TopicRecorder
 from turtle_patrol.srv import Patrol
 from turtlesim.constants import TICK, WORLD_SIZE
 from turtlesim.msg import Pose

@@ -33,9 +33,9 @@ from typing import Callable, Dict, List, NamedTuple, Optional, Sequence
 from course_milestones.milestone import Milestone
 from course_milestones import causes, unbuilt
 from course_milestones.scripts import script_problems
-from course_testkit import junit
-from course_testkit.artifacts import ENV_VAR as ARTIFACTS_VAR
-from course_testkit.rostest_runner import run_rostest
+from course_checks import junit
+from course_checks.artifacts import ENV_VAR as ARTIFACTS_VAR
+from course_checks.rostest_runner import run_rostest
 
 from course_sandbox import leftovers, procs
 from course_sandbox.policy import ENV_VAR as POLICY_VAR, Limits

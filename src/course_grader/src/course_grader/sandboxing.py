@@ -15,7 +15,7 @@ import pwd
 from typing import Dict, Optional, Sequence
 
 from course_sandbox import access, levels, pids_cgroup
-from course_testkit import isolation
+from course_checks import isolation
 from course_sandbox.policy import DEFAULT_USER, Limits, Policy, grading_gid, normalised
 from course_sandbox.run import end_user_processes
 

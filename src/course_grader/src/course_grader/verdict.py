@@ -19,7 +19,7 @@ from typing import Dict, Iterable, List, NamedTuple, Optional, Sequence, Tuple
 
 from course_milestones import causes, scripts
 from course_milestones.milestone import Milestone
-from course_testkit.isolation import MAX_FILE_BYTES
+from course_checks.isolation import MAX_FILE_BYTES
 
 from course_grader.submissions import Package
 

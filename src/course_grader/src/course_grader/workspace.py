@@ -20,7 +20,7 @@ from typing import Dict, Iterable, List, NamedTuple, Optional, Sequence, Set
 from course_milestones import causes
 from course_sandbox import env_paths
 from course_sandbox.run import LimitHits, capture_oneshot, run_oneshot
-from course_testkit.isolation import sourced_env
+from course_checks.isolation import sourced_env
 
 from course_grader import build_errors, build_order
 from course_grader.sandboxing import SandboxPlan, overlay_paths, parse_env

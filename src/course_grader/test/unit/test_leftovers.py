@@ -9,7 +9,7 @@ from course_sandbox import leftovers
 from course_sandbox.policy import grading_gid
 from course_sandbox.pids_cgroup import NAME_PREFIX
 from course_testkit.gradings import gone_pid as dead_pid, live_grader
-from course_testkit.waiting import wait_for
+from course_checks.waiting import wait_for
 
 
 def sleeper(env):

@@ -5,7 +5,7 @@ import json
 import os
 
 from course_milestones.milestone import Milestone
-from course_testkit.rostest_runner import RostestResult
+from course_checks.rostest_runner import RostestResult
 
 from course_grader import runner, workspace
 from course_grader.submissions import Submission

@@ -5,6 +5,6 @@
 - arrows: the one table of the arrow keys' escape sequences (test keyboards type it, the decoder reads it);
 - drive: what the arrows ask a robot to do (turtle_teleop_key's map: up forward, left turns left).
 
-Exercises (turtlesim's turtle_teleop_key, mybot_teleop, lab2_turtlesim) and course_testkit's
+Exercises (turtlesim's turtle_teleop_key, mybot_teleop, lab2_turtlesim) and course_checks'
 PtyKeyboard import it; it imports none of them.
 """

@@ -15,7 +15,7 @@ runs, and decorates its TestCase with `@judged`. From then on, in the check's pr
 - Services. Every rospy.ServiceProxy call asks the master for the provider's endpoint in
   `rospy.impl.tcpros_service.ServiceProxy._get_service_uri`, then connects to it. That method
   is wrapped: a guarded service whose endpoint is not the simulator's recorded one is not
-  called (ServiceException with the violation sentence). course_testkit.artifacts.save_canvas
+  called (ServiceException with the violation sentence). course_checks.artifacts.save_canvas
   goes through it too, so a student's /turtlesim/snapshot is never asked for a path.
 - Name takeovers (lookupNode gives a simulator's name another URI) are found at each look.
 
@@ -36,7 +36,7 @@ from rospy.impl import masterslave, tcpros_service
 from rospy.impl.registration import get_topic_manager
 
 from course_milestones.trusted import Graph, Simulator, TrustError, TrustPolicy
-from course_testkit.waiting import wait_for
+from course_checks.waiting import wait_for
 
 CALLER = "/course_trust_guard"
 RECORD_TIMEOUT_S = 30.0

@@ -16,10 +16,10 @@ import rosgraph
 from course_milestones import keymap as km
 from course_milestones.discovery import CALLER, node_uris
 from course_milestones.students import REGISTER_TIMEOUT, wait_for_publisher
-from course_testkit.artifacts import artifact_path
-from course_testkit.keyboard import PtyKeyboard
-from course_testkit.recorders import TopicRecorder
-from course_testkit.waiting import wait_for
+from course_checks.artifacts import artifact_path
+from course_checks.keyboard import PtyKeyboard
+from course_checks.recorders import TopicRecorder
+from course_checks.waiting import wait_for
 
 PROBE_WINDOW = 1.5        # s: how long a key press has to produce its command
 RAW_WAIT = 1.0            # s: how long a key waits for the node's terminal to be in raw mode

@@ -29,7 +29,7 @@ import rosgraph.names
 from course_milestones import students
 from course_milestones.discovery import launch_file_names, package_dir
 from course_milestones.launch_dump import FORMAT
-from course_testkit.nodes import find_executable
+from course_checks.nodes import find_executable
 
 LOAD_TIMEOUT_S = 30.0          # roslaunch reads a file in about a second; a <param command> may hang
 MAX_DUMP_BYTES = 1024 * 1024   # what students.run_captured keeps of the output

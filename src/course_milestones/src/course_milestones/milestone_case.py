@@ -8,7 +8,7 @@ turns that off here, once. A message that is a causes.Finding records its cause 
 import unittest
 
 from course_milestones import causes
-from course_testkit.artifacts import artifact_dir
+from course_checks.artifacts import artifact_dir
 
 
 def _record(message: object) -> None:

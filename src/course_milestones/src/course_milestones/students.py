@@ -1,7 +1,7 @@
 """A student's executables and launch files as processes we own: start them, see which of them
 registered what (the text names the package, not the scripts), describe what each did for a
 failure message, and stop them. Every process runs in its own process group, with its output in
-an artifact log (course_testkit.artifacts) that the grader shows the student.
+an artifact log (course_checks.artifacts) that the grader shows the student.
 
 When the grader runs the check, every student process goes into the run's sandbox
 (course_sandbox: its own namespaces, read-only course, hidden outputs, an unprivileged user,
@@ -35,10 +35,10 @@ from course_sandbox.run import RunSandbox
 from course_milestones import causes, master_log
 from course_milestones.discovery import (CALLER, Registration, describe as describe_names, list_executables,
                                          new_registrations, node_uris, own_names, registrations_with_uris)
-from course_testkit.artifacts import artifact_path
-from course_testkit.keyboard import PtyKeyboard
-from course_testkit.nodes import NodeProcess
-from course_testkit.waiting import wait_for
+from course_checks.artifacts import artifact_path
+from course_checks.keyboard import PtyKeyboard
+from course_checks.nodes import NodeProcess
+from course_checks.waiting import wait_for
 
 # What rospy prints when the master stops a node because a newer one took its name.
 SAME_NAME = "new node registered with same name"

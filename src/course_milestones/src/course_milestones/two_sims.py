@@ -6,8 +6,8 @@ from __future__ import annotations
 from typing import Dict, List, Optional
 
 from course_milestones.discovery import Registration, system_state
-from course_testkit.artifacts import save_canvas
-from course_testkit.waiting import wait_for
+from course_checks.artifacts import save_canvas
+from course_checks.waiting import wait_for
 
 NAMESPACES = ("/turtlesim1", "/turtlesim2")
 LAUNCH_FILE = "two_turtles.launch"

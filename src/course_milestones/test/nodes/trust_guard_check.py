@@ -20,10 +20,10 @@ from turtlesim.srv import Spawn, TeleportAbsolute
 
 from course_milestones import guard
 from course_milestones.trusted import TURTLESIM
-from course_testkit.artifacts import PNG_SIGNATURE, artifact_path, save_canvas
-from course_testkit.nodes import NodeProcess
-from course_testkit.recorders import TopicRecorder
-from course_testkit.waiting import wait_for
+from course_checks.artifacts import PNG_SIGNATURE, artifact_path, save_canvas
+from course_checks.nodes import NodeProcess
+from course_checks.recorders import TopicRecorder
+from course_checks.waiting import wait_for
 
 FAKE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "fake_simulator.py")
 FAKE_X = 42.0

@@ -11,7 +11,7 @@ from hypothesis import strategies as st
 
 from course_milestones import launch_files as lf
 from course_milestones.launch_dump import FORMAT
-from course_testkit.waiting import wait_for
+from course_checks.waiting import wait_for
 
 LAUNCH = """<launch>
   <param name="linear_scale" value="1.0"/>

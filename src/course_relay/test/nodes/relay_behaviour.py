@@ -9,8 +9,8 @@ import rostest
 from geometry_msgs.msg import Twist
 from std_msgs.msg import String
 
-from course_testkit.recorders import TopicRecorder
-from course_testkit.waiting import wait_for
+from course_checks.recorders import TopicRecorder
+from course_checks.waiting import wait_for
 
 
 class RelayBehaviour(unittest.TestCase):

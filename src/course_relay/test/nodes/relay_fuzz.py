@@ -24,9 +24,9 @@ from std_msgs.msg import Float64, Float64MultiArray, String
 
 from course_relay.names import topic_name_problem
 from course_testkit.fuzz import valid_names, wild_floats, wild_names
-from course_testkit.nodes import NodeProcess
-from course_testkit.recorders import RosoutRecorder, TopicRecorder
-from course_testkit.waiting import wait_for
+from course_checks.nodes import NodeProcess
+from course_checks.recorders import RosoutRecorder, TopicRecorder
+from course_checks.waiting import wait_for
 
 TIMEOUT_S = 20
 EXIT_S = 10  # an invalid name must end the relay within this (a hang is the bug)

@@ -12,9 +12,9 @@ import rospy
 import rostest
 from std_msgs.msg import String
 
-from course_testkit.nodes import NodeProcess
-from course_testkit.recorders import TopicRecorder
-from course_testkit.waiting import wait_for
+from course_checks.nodes import NodeProcess
+from course_checks.recorders import TopicRecorder
+from course_checks.waiting import wait_for
 
 TIMEOUT_S = 20
 

@@ -10,8 +10,8 @@ import rospy
 import rostest
 from turtlesim.msg import Pose
 
-from course_testkit.recorders import TopicRecorder
-from course_testkit.waiting import wait_for
+from course_checks.recorders import TopicRecorder
+from course_checks.waiting import wait_for
 
 NAMESPACES = ("/turtlesim1", "/turtlesim2")
 COMMAND = ["rostopic", "pub", "-1", "/turtle1/cmd_vel", "geometry_msgs/Twist", "--",

@@ -11,7 +11,7 @@ from typing import Iterator, Tuple
 
 import pytest
 
-from course_testkit.isolation import port_below_ephemeral_range
+from course_checks.isolation import port_below_ephemeral_range
 
 TIMEOUT_S = 60.0
 WINDOW = (1280, 1400)

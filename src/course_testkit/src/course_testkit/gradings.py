@@ -10,7 +10,7 @@ from pathlib import Path
 from typing import Iterator, List
 
 from course_sandbox import leftovers
-from course_testkit.waiting import wait_for
+from course_checks.waiting import wait_for
 
 # sh marks itself with its own pid, then execs Python in its place (the same pid, the mark in the
 # environment it was exec'd with, which is what /proc/<pid>/environ shows).

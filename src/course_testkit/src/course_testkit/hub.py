@@ -14,8 +14,8 @@
 - Then a `JupyterSession` on `/user/<owner>/`: the REST API, files, and terminals
   (course_testkit.jupyter.Terminal) through the hub's proxy with the cookies alone, no token.
 
-`LocalHub(image, work, students, tas, extra_config)` is `make hub`'s own start (course_hub's
-runner, deploy/jupyterhub's config) on a scratch data folder and class list, on free ports, its
+`LocalHub(image, work, students, tas, extra_config)` is `make hub`'s own start (`course-hub` of
+the hub's venv, deploy/jupyterhub's config) on a scratch data folder and class list, on free ports, its
 own podman socket, and no managed culler (the caller runs jupyterhub-idle-culler with
 `culler_token` when it wants servers culled); `extra_config` is config text run after the
 course's. Root only, as `make hub`.
@@ -39,8 +39,8 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 from tornado.httpclient import HTTPRequest
 
-from course_testkit import isolation
-from course_testkit.waiting import wait_for
+from course_checks import isolation
+from course_checks.waiting import wait_for
 from course_testkit.jupyter import JupyterError, JupyterSession
 
 REQUEST_TIMEOUT_S = 30.0
@@ -265,8 +265,10 @@ class LocalHub:
             "course": str(CHECKOUT / "deploy" / "jupyterhub" / "jupyterhub_config.py"),
             "proxy_api_port": isolation.free_port(),
             "culler_token": self.culler_token} + extra_config)
+        # as make hub's HUB_ENV: make's variables, and the proxy on PATH
         self.env = dict(os.environ, HUB_DATA=str(self.data), HUB_CLASS_LIST=str(self.class_list), HUB_IMAGE=image,
-                        HUB_URL=self.bind_url)
+                        HUB_URL=self.bind_url, PATH="%s:%s" % (CHECKOUT / ".hub" / "node" / "node_modules" / ".bin",
+                                                               os.environ.get("PATH", os.defpath)))
         self.env.pop("DOCKER_HOST", None)
         self.socket = "/run/ros-course-hub-local-%d/podman.sock" % os.getpid()
         self.api_port = isolation.free_port()
@@ -276,8 +278,7 @@ class LocalHub:
     def start(self) -> str:
         with open(self.log, "ab") as out:
             self.proc = subprocess.Popen(
-                ["/usr/bin/python3", str(CHECKOUT / "src" / "course_hub" / "scripts" / "hub"), "--config",
-                 str(self.config), "--jupyterhub", str(CHECKOUT / ".venv-hub" / "bin" / "jupyterhub"),
+                [str(CHECKOUT / ".venv-hub" / "bin" / "course-hub"), "--config", str(self.config),
                  "--socket", self.socket, "--api-port", str(self.api_port)],
                 env=self.env, stdout=out, stderr=subprocess.STDOUT, start_new_session=True, cwd=str(self.work))
         proc = self.proc

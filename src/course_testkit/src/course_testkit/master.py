@@ -10,7 +10,7 @@ rosout and its /rosout_agg, the /run_id and /rosdistro parameters).
 Used as a context manager, it is ready when the block starts (the master answers getSystemState,
 and rosout has registered when asked for) and everything it started is stopped when the block
 ends, however it ends: the nodes started through it, the master, and whatever they started
-(processes carry the run token of course_testkit.isolation, so even a node that left its process
+(processes carry the run token of course_checks.isolation, so even a node that left its process
 group is found). Its ROS_HOME is a fresh folder, removed after a clean run and kept, for its
 logs, when the block raised.
 """
@@ -24,9 +24,9 @@ from pathlib import Path
 from types import TracebackType
 from typing import Dict, List, Mapping, Optional, Sequence, Type
 
-from course_testkit import isolation
-from course_testkit.nodes import NodeProcess
-from course_testkit.waiting import wait_for
+from course_checks import isolation
+from course_checks.nodes import NodeProcess
+from course_checks.waiting import wait_for
 
 HOSTNAME = "localhost"
 CALLER_ID = "/course_testkit_master"

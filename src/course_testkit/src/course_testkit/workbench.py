@@ -5,7 +5,7 @@ page drives it: Jupyter's REST API and its terminal websocket (course_testkit.ju
 runs) on a free port, with a fresh HOME (the student's home: their overlay ~/catkin_ws is made
 there) and a student master URI on a free port nobody else uses, and waits until JupyterLab
 answers. Stopping it stops JupyterLab (SIGTERM: it ends its terminals and the proxied lab page),
-then anything left that carries its run token (course_testkit.isolation), and removes the home.
+then anything left that carries its run token (course_checks.isolation), and removes the home.
 """
 from __future__ import annotations
 
@@ -20,10 +20,10 @@ from typing import Any, List, Mapping, Optional, Sequence
 
 from course_sandbox import procs
 
-from course_testkit import isolation
+from course_checks import isolation
 from course_testkit.jupyter import STOP_TIMEOUT_S, JupyterError, JupyterServer, Terminal
-from course_testkit.nodes import find_executable
-from course_testkit.waiting import wait_for
+from course_checks.nodes import find_executable
+from course_checks.waiting import wait_for
 
 START_TIMEOUT_S = 60.0
 # The reference solutions' folders: never on a path of the student's terminals or desktop.

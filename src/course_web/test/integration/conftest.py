@@ -17,10 +17,10 @@ import pytest
 from tornado.websocket import WebSocketClientConnection, websocket_connect
 
 from course_testkit.browser import TIMEOUT_S as BROWSER_TIMEOUT_S, chromium
-from course_testkit.isolation import free_port
+from course_checks.isolation import free_port
 from course_testkit.master import PrivateMaster
-from course_testkit.nodes import NodeProcess, find_executable
-from course_testkit.waiting import wait_for
+from course_checks.nodes import NodeProcess, find_executable
+from course_checks.waiting import wait_for
 
 STARTUP_TIMEOUT_S = 60.0
 IMAGE_RATE = 30

@@ -15,11 +15,11 @@ import os
 
 import pytest
 
-from course_testkit.artifacts import artifact_path
+from course_checks.artifacts import artifact_path
 from course_testkit.browser import require_browser
-from course_testkit.nodes import find_executable
+from course_checks.nodes import find_executable
 from course_testkit.pictures import load_png
-from course_testkit.waiting import wait_for
+from course_checks.waiting import wait_for
 
 require_browser()
 from PIL import Image  # noqa: E402

@@ -6,7 +6,7 @@ import threading
 
 import pytest
 
-from course_testkit.waiting import wait_for
+from course_checks.waiting import wait_for
 
 roslibpy = pytest.importorskip("roslibpy", reason="roslibpy is not installed: run `make deps` (requirements.txt)")
 

@@ -11,10 +11,10 @@ import urllib.error
 import urllib.parse
 import urllib.request
 
-from course_testkit.isolation import free_port
+from course_checks.isolation import free_port
 from course_testkit.master import system_state
-from course_testkit.nodes import find_executable
-from course_testkit.waiting import wait_for
+from course_checks.nodes import find_executable
+from course_checks.waiting import wait_for
 
 VIEWERS = 20
 WATCH_S = 4.0

@@ -13,10 +13,10 @@ import math
 import numpy as np
 import pytest
 
-from course_testkit.artifacts import artifact_path
+from course_checks.artifacts import artifact_path
 from course_testkit.browser import require_browser
 from course_testkit.pictures import changed_pixels, load_png, orange_pixels, red_pixels
-from course_testkit.waiting import wait_for
+from course_checks.waiting import wait_for
 
 require_browser()
 from selenium.webdriver.common.action_chains import ActionChains  # noqa: E402

@@ -6,7 +6,7 @@ again by itself and draws the student's turtle."""
 from __future__ import annotations
 
 from course_testkit.browser import chromium, require_browser
-from course_testkit.waiting import wait_for
+from course_checks.waiting import wait_for
 from course_testkit.workbench import Workbench, open_from_launcher
 
 require_browser()

@@ -20,10 +20,10 @@ import pytest
 
 from course_sandbox import env_paths
 from course_testkit.browser import chromium, require_browser
-from course_testkit.isolation import pids_with_token
+from course_checks.isolation import pids_with_token
 from course_testkit.jupyter import refused_websocket
 from course_testkit.screen import colour_share, colour_stats
-from course_testkit.waiting import wait_for
+from course_checks.waiting import wait_for
 from course_testkit.workbench import REFERENCE_MARKERS, Workbench, open_from_launcher
 from course_testkit.xwindows import XWindow, largest_titled, shown_windows
 from course_workbench.startup import DISPLAY_FILE_VAR

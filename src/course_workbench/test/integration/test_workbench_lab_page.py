@@ -14,7 +14,7 @@ import pytest
 
 from course_testkit.jupyter import refused_websocket
 from course_testkit.rosbridge import drive_turtle
-from course_testkit.waiting import wait_for
+from course_checks.waiting import wait_for
 from course_testkit.workbench import Workbench
 
 PAGE_TITLE = "<title>The lab in a browser</title>"

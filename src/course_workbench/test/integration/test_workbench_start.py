@@ -8,8 +8,8 @@ import socket
 import subprocess
 import tempfile
 
-from course_testkit.isolation import free_port
-from course_testkit.nodes import find_executable
+from course_checks.isolation import free_port
+from course_checks.nodes import find_executable
 from course_workbench import startup
 
 

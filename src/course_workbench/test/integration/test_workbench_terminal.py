@@ -14,7 +14,7 @@ import tempfile
 
 import pytest
 
-from course_testkit.nodes import find_executable
+from course_checks.nodes import find_executable
 from course_testkit import student_lab
 from course_testkit.workbench import REFERENCE_MARKERS, Workbench
 

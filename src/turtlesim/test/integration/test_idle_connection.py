@@ -10,8 +10,8 @@ from turtlesim.srv import Spawn, SpawnRequest
 
 from course_testkit import tcpros
 from course_testkit.master import PrivateMaster
-from course_testkit.nodes import find_executable
-from course_testkit.waiting import wait_for
+from course_checks.nodes import find_executable
+from course_checks.waiting import wait_for
 
 STARTUP_S = 30.0
 # Far more than a free node needs (milliseconds), far less than rospy's blocked accept waits

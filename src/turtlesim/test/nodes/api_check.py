@@ -13,8 +13,8 @@ from std_srvs.srv import Empty
 from turtlesim.constants import CENTRE, DEFAULT_BACKGROUND_RGB, WORLD_SIZE
 from turtlesim.msg import Color, Pose
 from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute, TeleportRelative
-from course_testkit.recorders import RosoutRecorder, TopicRecorder
-from course_testkit.waiting import wait_for
+from course_checks.recorders import RosoutRecorder, TopicRecorder
+from course_checks.waiting import wait_for
 
 
 def twist(x=0.0, y=0.0, z=0.0) -> Twist:

@@ -10,8 +10,8 @@ from std_srvs.srv import Empty
 from turtlesim.msg import Pose
 from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute, TeleportRelative
 from course_testkit.fuzz import is_sane_pose
-from course_testkit.recorders import RosoutRecorder, TopicRecorder
-from course_testkit.waiting import wait_for
+from course_checks.recorders import RosoutRecorder, TopicRecorder
+from course_checks.waiting import wait_for
 
 
 class TurtlesimErrors(unittest.TestCase):

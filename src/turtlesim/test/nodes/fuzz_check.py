@@ -22,8 +22,8 @@ from std_srvs.srv import Empty
 from course_testkit.fuzz import (FLOAT32_MAX, as_float32, is_sane_pose, is_wrapped_angle, wild_float32s,
                                  wild_floats, wild_names)
 from course_testkit.fuzz import live_node_settings as fuzz
-from course_testkit.recorders import TopicRecorder
-from course_testkit.waiting import wait_for
+from course_checks.recorders import TopicRecorder
+from course_checks.waiting import wait_for
 from turtlesim.constants import DEFAULT_BACKGROUND_RGB, WORLD_SIZE
 from turtlesim.msg import Pose
 from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute, TeleportRelative

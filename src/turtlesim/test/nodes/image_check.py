@@ -15,7 +15,7 @@ from std_srvs.srv import Trigger
 
 from turtlesim.constants import DEFAULT_BACKGROUND_RGB
 from turtlesim.srv import SetPen, TeleportAbsolute
-from course_testkit.recorders import TopicRecorder
+from course_checks.recorders import TopicRecorder
 
 
 def pixel(msg: Image, x: int, y: int):

@@ -9,9 +9,9 @@ import rostest
 from geometry_msgs.msg import Twist
 
 from turtlesim.msg import Pose
-from course_testkit.keyboard import PtyKeyboard
-from course_testkit.recorders import TopicRecorder
-from course_testkit.waiting import wait_for
+from course_checks.keyboard import PtyKeyboard
+from course_checks.recorders import TopicRecorder
+from course_checks.waiting import wait_for
 
 NODE = sys.argv[1:3] if len(sys.argv) >= 3 and not sys.argv[1].startswith("__") else ["turtlesim", "turtle_teleop_key"]
 

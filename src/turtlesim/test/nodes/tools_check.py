@@ -12,8 +12,8 @@ from std_srvs.srv import Empty
 from turtlesim.constants import CENTRE
 from turtlesim.msg import Pose
 from turtlesim.srv import Spawn
-from course_testkit.recorders import TopicRecorder
-from course_testkit.waiting import wait_for
+from course_checks.recorders import TopicRecorder
+from course_checks.waiting import wait_for
 
 
 class Tools(unittest.TestCase):

@@ -6,8 +6,8 @@ import sys
 
 import pytest
 
-from course_testkit import isolation
-from course_testkit.waiting import wait_for
+from course_checks import isolation
+from course_checks.waiting import wait_for
 
 # A grandchild in a new session that ignores the polite signals, whose parent exits at once.
 ESCAPER = r'''

@@ -1,5 +1,5 @@
 """JUnit XML as rostest and rosunit write it: counts and the check's own message."""
-from course_testkit import junit
+from course_checks import junit
 
 TRACE = '''  File "/usr/lib/python3.11/unittest/case.py", line 57, in testPartExecutor
     yield

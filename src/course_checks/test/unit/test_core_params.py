@@ -5,7 +5,7 @@ from pathlib import Path
 
 import pytest
 
-from course_testkit.core_params import etc_dir_for_run
+from course_checks.core_params import etc_dir_for_run
 
 ROSCORE = """<launch>
   <group ns="/">

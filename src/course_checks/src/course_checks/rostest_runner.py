@@ -17,8 +17,8 @@ import threading
 import time
 from typing import IO, List, NamedTuple, Optional, Sequence, Tuple
 
-from course_testkit import isolation, junit
-from course_testkit.core_params import etc_dir_for_run
+from course_checks import isolation, junit
+from course_checks.core_params import etc_dir_for_run
 
 DEFAULT_TIMEOUT_S = 300.0
 # What we keep of rostest's combined output: its start and its end.

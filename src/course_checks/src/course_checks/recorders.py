@@ -8,7 +8,7 @@ from typing import Callable, List, Optional
 import rospy
 from rosgraph_msgs.msg import Log
 
-from course_testkit.waiting import wait_for
+from course_checks.waiting import wait_for
 
 
 class TopicRecorder:

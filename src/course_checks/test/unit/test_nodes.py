@@ -6,8 +6,8 @@ import sys
 
 import pytest
 
-from course_testkit.nodes import NodeProcess
-from course_testkit.waiting import wait_for
+from course_checks.nodes import NodeProcess
+from course_checks.waiting import wait_for
 
 
 def test_wait_gives_the_exit_code():

@@ -20,9 +20,9 @@ import time
 from typing import Callable, Optional, Sequence, TypeVar
 
 from course_keyboard.arrows import SEQUENCES as ARROW_SEQUENCES
-from course_testkit.isolation import descendants, signal_all
-from course_testkit.nodes import NodeProcess, find_executable
-from course_testkit.waiting import wait_for
+from course_checks.isolation import descendants, signal_all
+from course_checks.nodes import NodeProcess, find_executable
+from course_checks.waiting import wait_for
 
 T = TypeVar("T")
 

@@ -1,5 +1,5 @@
 """What save_canvas may copy into a student's outputs: a PNG at a plain path, never through a link,
-never a device or a FIFO, never a huge file (course_testkit.artifacts.read_png)."""
+never a device or a FIFO, never a huge file (course_checks.artifacts.read_png)."""
 from __future__ import annotations
 
 import os
@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from course_testkit.artifacts import PNG_SIGNATURE, UnsafeFile, read_png
+from course_checks.artifacts import PNG_SIGNATURE, UnsafeFile, read_png
 
 PICTURE = PNG_SIGNATURE + b"\x00\x00\x00\rIHDR" + bytes(range(64))
 

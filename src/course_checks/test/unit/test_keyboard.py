@@ -4,7 +4,7 @@ import os
 import sys
 import time
 
-from course_testkit.keyboard import LINE_KILL, PtyKeyboard, key_bytes
+from course_checks.keyboard import LINE_KILL, PtyKeyboard, key_bytes
 
 # Reads one key at a time like teleop_twist_keyboard: tty.setraw (which flushes pending input) only
 # while waiting, cooked mode in between; writes each key it got to a file.

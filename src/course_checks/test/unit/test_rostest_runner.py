@@ -1,8 +1,8 @@
 """The runner's pure parts: capped output, results read from a results folder."""
 import os
 
-from course_testkit import rostest_runner
-from course_testkit.rostest_runner import CappedText, RostestResult
+from course_checks import rostest_runner
+from course_checks.rostest_runner import CappedText, RostestResult
 
 LAUNCHER_OK = ('<testsuite errors="0" failures="0" tests="1"><testcase classname="rostest.runner.RosTest" '
                'name="testchatter" time="1.1"/></testsuite>')

@@ -261,3 +261,17 @@ def test_no_reason_speaks_unittest(graded: Path) -> None:
                 if UNITTEST_WORDS.search(line) and line.strip() not in logs:
                     found.append("%s/%s: %s" % (sample.name, name, line))
     assert not found, "\n".join(found)
+
+
+def test_no_text_a_student_reads_holds_the_graders_paths(graded: Path) -> None:
+    """Reasons, log tails and tracebacks quote paths from the student's package down: never the
+    grader's output or work folder, however a check or a log cut the path."""
+    found = []
+    for sample in SAMPLES:
+        results = json.loads((graded / sample.name / "results.json").read_text())
+        texts = [results.get("output", "")] + [t.get("output", "") for t in results["tests"]]
+        for text in texts:
+            for marker in (str(graded), "/_work/", str(graded.parent)):
+                if marker in text:
+                    found.append("%s: %r" % (sample.name, text[max(0, text.index(marker) - 80):][:200]))
+    assert not found, "\n".join(found)

@@ -81,7 +81,7 @@ class NodeProcess:
     def end(self) -> Optional[int]:
         """SIGKILL to the group at once, for a check's clean-up once its verdict is in: how the
         node would take Ctrl+C no longer matters, and a rospy node's own shutdown costs about half
-        a CPU second and as much wall time (docs/grading.md). Its exit code."""
+        a CPU second and as much wall time (docs/benchmarks.md). Its exit code."""
         if self.proc.poll() is None:
             try:
                 os.killpg(self.proc.pid, signal.SIGKILL)

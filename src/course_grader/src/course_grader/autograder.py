@@ -1,6 +1,6 @@
 """Write the Gradescope autograder zip: setup.sh and run_autograder at its root (as Gradescope's
 specs require), the course repository's tracked files beside them (setup.sh builds them as the
-README's `make build` does), and milestones.txt when the assignment grades only some milestones.
+`make build` does (docs/setup.md)), and milestones.txt when the assignment grades only some milestones.
 Grading then scales past one machine: one container per submission on Gradescope's fleet."""
 from __future__ import annotations
 

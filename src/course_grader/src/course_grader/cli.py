@@ -42,7 +42,7 @@ from course_grader.runner import REFERENCE, Busy, Grader, Options, claim_output,
 
 # Three milestone runs per core: most of a run is waiting on behaviour the text fixes (a drawing,
 # a robot driving, a time-out), which other runs' CPU work fills. Reference, 18 milestones on 2
-# cores: --jobs 3 45-47 s, --jobs 6 26 s (docs/grading.md "Where a grading's time goes").
+# cores: --jobs 3 45-47 s, --jobs 6 26 s (docs/benchmarks.md "Where a grading's time goes").
 RUNS_PER_CORE = 3
 # Memory a run may take: its processes' RSS summed peaked at 373 MiB (turtlebot, MuJoCo), 286 MiB
 # (launch_params); a small container (Gradescope's default) gets fewer runs at once.

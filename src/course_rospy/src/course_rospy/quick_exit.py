@@ -7,7 +7,7 @@ then (rospy closes its topic connections at the same moment), `select()` returns
 fails and the loop goes round again: the thread spins on a core from rospy's shutdown until the
 process exits (rospy's shutdown alone waits 0.6 s for its threads). turtlesim spent 0.54 of its
 0.58 CPU s of a short run that way. A milestone run ends several nodes, so this was a large share of a grading's CPU
-(docs/grading.md, "Where a grading's time goes").
+(docs/benchmarks.md, "Where a grading's time goes").
 
 `install()` wraps `rosgraph.xmlrpc.XmlRpcNode.shutdown` so that the loop is asked to stop
 (socketserver's own `shutdown()`, on a helper thread since it waits for the loop) and the node

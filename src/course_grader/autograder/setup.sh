@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Gradescope runs this once, as root, when it builds the autograder image; the zip is unpacked
 # in /autograder/source. It installs and builds the course workspace exactly as
-# `make build` does (docs/setup.md) (Debian/Ubuntu packages, the venv, catkin_make).
+# `make build` does (docs/setup.md: Debian/Ubuntu packages, the venv, catkin_make).
 set -euo pipefail
 source_dir="$(cd "$(dirname "$0")" && pwd)"
 cd "$source_dir"

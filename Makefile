@@ -12,37 +12,40 @@ HAVE_SOLUTIONS := $(wildcard $(ROOT)/solutions/*/package.xml)
 ROSENV := source $(WS)/devel/setup.bash &&
 REFENV := source $(if $(HAVE_SOLUTIONS),$(SOLUTIONS_WS),$(WS))/devel/setup.bash &&
 
-.PHONY: deps build demo lab jupyter hub hub-password hub-grade hub-check test flake-hunt unit rostest grade autograder bench bench-grade docker-check autograder-check clean
+.PHONY: help deps build demo lab jupyter hub hub-password hub-grade hub-check test flake-hunt grade autograder bench bench-grade docker-check autograder-check clean
 
-deps:
+# Every target has its line in `make help`: the text after `## ` on the target's own line
+# (tests/test_makefile.py checks that none is missing).
+help: ## this list: every target, one line each (the comments above a target say more)
+	@echo "make TARGET, in $(ROOT):"
+	@awk '/^[A-Za-z0-9_.-]+:[^=]*## / { name = $$0; sub(/:.*/, "", name); text = $$0; sub(/^[^#]*## /, "", text); \
+	  printf "  %-18s %s\n", name, text }' $(MAKEFILE_LIST)
+
+# Set-up, one line per step with its time, apt's, pip's and catkin_make's output in the logs it
+# names (logs/, catkin_ws/build.log, solutions_ws/build.log); a failed step prints its log's tail.
+
+deps: ## install what is missing: Debian's ROS 1 packages, the venvs .venv and .venv-jupyter (tools/deps.sh)
 	@bash $(ROOT)/tools/deps.sh
 
-build: deps
-	@cd $(WS) && catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release > $(WS)/build.log 2>&1 \
-	  || { tail -n 60 $(WS)/build.log; exit 1; }
-	@echo "build: ok (log in catkin_ws/build.log)"
-ifneq ($(HAVE_SOLUTIONS),)
-	@$(ROSENV) cd $(SOLUTIONS_WS) && catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release \
-	  > $(SOLUTIONS_WS)/build.log 2>&1 || { tail -n 60 $(SOLUTIONS_WS)/build.log; exit 1; }
-	@echo "build: reference solutions ok, an overlay in solutions_ws (log in solutions_ws/build.log)"
-endif
+build: ## deps, then catkin_make in catkin_ws (the course) and solutions_ws (the reference solutions' overlay)
+	@bash $(ROOT)/tools/deps.sh --build
 
-demo: build
+demo: build ## a private master, turtlesim and a short scripted scene; the canvas saved as a PNG in output/
 	@$(ROSENV) python3 $(ROOT)/tools/demo.py
 
-test: build
+test: build ## every test (pytest: src, solutions, tests), in the reference overlay's environment
 	@$(REFENV) cd $(ROOT) && python3 -m pytest
 
 # make flake-hunt K=10: the whole suite K times in a row, failures per test (docs/testing.md).
 # UNTIL_FAIL=1 stops at the first failing run; ARGS="..." goes to pytest (a subset, -k ...).
 K ?= 10
-flake-hunt: build
+flake-hunt: build ## the whole suite K times in a row (K=10), failures per test (UNTIL_FAIL=1, ARGS=...)
 	@$(REFENV) cd $(ROOT) && python3 tools/flake_hunt.py $(if $(UNTIL_FAIL),--until-fail) $(K) $(ARGS)
 
 # make grade: our reference solutions, every milestone. make grade SUBMISSIONS=DIR: every entry of
 # DIR (folder, .zip, .tar.gz) is one student's submission. Results in $(GRADES) (default ./grades).
 GRADES ?= $(ROOT)/grades
-grade: build
+grade: build ## grade the reference solutions, or each student in SUBMISSIONS=DIR; results in GRADES=./grades
 	@$(ROSENV) cd $(ROOT) && rosrun course_grader grade $(if $(SUBMISSIONS),--class $(abspath $(SUBMISSIONS))) \
 	  --out $(GRADES) $(if $(JOBS),--jobs $(JOBS))
 
@@ -51,7 +54,7 @@ grade: build
 LAB_ADDRESS ?= 127.0.0.1
 LAB_URL_HOST ?=
 LAB_PORT ?= 8080
-lab: build
+lab: build ## the lab page with turtlesim, http://127.0.0.1:8080/ (LAB_ADDRESS, LAB_PORT)
 	@$(ROSENV) roslaunch course_web lab_view.launch turtlesim:=true address:=$(LAB_ADDRESS) port:=$(LAB_PORT) \
 	  url_host:=$(LAB_URL_HOST)
 
@@ -63,7 +66,7 @@ JUPYTER_URL_HOST ?=
 JUPYTER_PORT ?= 8888
 # It builds only what was never built: a no-op `make build` (catkin_make) would add 10-25 s to every start,
 # and the image's sources never change; after editing the course's sources, run make build.
-jupyter:
+jupyter: ## the student's workbench: JupyterLab at http://127.0.0.1:8888/lab?token=... (JUPYTER_PORT)
 	@[ -f $(WS)/devel/share/course_workbench/cmake/course_workbenchConfig.cmake ] \
 	  && [ -x $(ROOT)/.venv-jupyter/bin/jupyter-lab ] || $(MAKE) --no-print-directory build
 	@$(ROSENV) rosrun course_workbench workbench --address $(JUPYTER_ADDRESS) --port '$(JUPYTER_PORT)' \
@@ -77,21 +80,21 @@ HUB_CLASS_LIST ?= $(ROOT)/deploy/jupyterhub/classlist.csv
 HUB_IMAGE ?= localhost/ros-course
 HUB_URL ?= http://127.0.0.1:8000
 HUB_ENV := HUB_DATA='$(HUB_DATA)' HUB_CLASS_LIST='$(abspath $(HUB_CLASS_LIST))' HUB_IMAGE='$(HUB_IMAGE)' HUB_URL='$(HUB_URL)'
-hub:
+hub: ## the class's JupyterHub, each student a container of the student image (root; docs/hub.md)
 	@COURSE_HUB=1 bash $(ROOT)/tools/deps.sh
 	@$(HUB_ENV) /usr/bin/python3 $(ROOT)/src/course_hub/scripts/hub --config $(ROOT)/deploy/jupyterhub/jupyterhub_config.py \
 	  --jupyterhub $(ROOT)/.venv-hub/bin/jupyterhub
 
 # The hand-out sheet of initial passwords, $(HUB_DATA)/initial-passwords.csv (the hub's start fills it for
 # users without a password). RESET=alice gives alice a new one at once, while the hub runs or not.
-hub-password:
+hub-password: ## the hand-out sheet of initial passwords; RESET=alice gives alice a new one
 	@COURSE_HUB=1 bash $(ROOT)/tools/deps.sh
 	@$(ROOT)/.venv-hub/bin/python $(ROOT)/src/course_hub/scripts/hub_passwords --data '$(HUB_DATA)' \
 	  --class-list '$(abspath $(HUB_CLASS_LIST))' $(foreach u,$(RESET),--reset $(u))
 
 # At a deadline: every student's catkin_ws/src snapshotted read-only, graded as a class (the gradebook
 # keyed by hub user), each report copied into its student's ~/grades. MILESTONES="chatter ..." as for autograder.
-hub-grade: build
+hub-grade: build ## at a deadline: every student's files snapshotted, graded, reports into their ~/grades
 	@$(ROSENV) rosrun course_hub hub_grade --data '$(HUB_DATA)' --class-list '$(abspath $(HUB_CLASS_LIST))' \
 	  $(foreach m,$(MILESTONES),--only $(m))
 
@@ -99,33 +102,33 @@ hub-grade: build
 # seven students and a TA logging in over HTTP and in Chromium, isolation, the admin, culling, a failed
 # start, snapshot-and-grade, and every attack of a hostile student (docs/hub.md). Not in make test.
 # HUB_CHECK_ARGS="--image localhost/ros-course-hub --no-build" tries an image already built.
-hub-check: build
+hub-check: build ## the hub end to end with real parts: podman, students, a TA, attacks (root; not in test)
 	@COURSE_HUB=1 bash $(ROOT)/tools/deps.sh
 	@$(REFENV) cd $(ROOT) && python3 tools/hub_check.py $(HUB_CHECK_ARGS)
 
 # Gradescope autograder: setup.sh + run_autograder + this repository; MILESTONES="chatter ..." grades only those.
-autograder: build
+autograder: build ## autograder.zip for Gradescope (MILESTONES="chatter ..." grades only those)
 	@$(ROSENV) rosrun course_grader make_autograder --out $(ROOT)/autograder.zip $(foreach m,$(MILESTONES),--only $(m))
 
-bench: build
+bench: build ## the benchmarks: turtlesim, the relay, the simulator, the lab page, the workbench
 	@$(REFENV) cd $(ROOT) && python3 bench/turtlesim_bench.py && python3 bench/relay_bench.py \
 	  && python3 bench/sim_bench.py && python3 bench/web_bench.py --simulator && python3 bench/workbench_bench.py
 
 # The grader's trust and speed: the reference graded 20 times, then a class of 30 (about 45 min),
 # then the similarity check on a class of 30.
-bench-grade: build
+bench-grade: build ## the grader's trust and speed: the reference 20 times, a class of 30, similarity
 	@$(REFENV) cd $(ROOT) && python3 bench/grade_bench.py && python3 bench/similarity_bench.py
 
 # docker/Dockerfile built and run by podman (root): the demo, make lab and make jupyter through their
 # published ports, then make grade and make test in containers; each step's time.
 # DOCKER_CHECK_ARGS="--skip-test" or "--rebuild"; COURSE_IMAGE=... INSTRUCTOR_IMAGE=... other tags.
 # See tools/podman_check.py.
-docker-check:
+docker-check: ## docker/Dockerfile's two images built by podman and tried: demo, lab, jupyter, grade, test (root)
 	@/usr/bin/python3 $(ROOT)/tools/podman_check.py docker-check $(DOCKER_CHECK_ARGS)
 
 # The Gradescope autograder as Gradescope runs it: setup.sh as root in a fresh container of the base
 # image, then run_autograder on a correct, a buggy, a non-building and an attack submission.
-autograder-check:
+autograder-check: ## the Gradescope autograder as Gradescope runs it, in fresh podman containers (root)
 	@$(MAKE) --no-print-directory autograder MILESTONES=chatter
 	@/usr/bin/python3 $(ROOT)/tools/podman_check.py autograder-check $(ROOT)/autograder.zip
 
@@ -135,13 +138,13 @@ autograder-check:
 # make jupyter answering over HTTP. image-figures: sizes, the demo's time emulated against native.
 # Hours of emulated work on a small machine; not part of make test. See docs/images.md.
 .PHONY: image-multiarch image-arm64-check image-figures
-image-multiarch:
+image-multiarch: ## the course image for linux/amd64 and linux/arm64 (qemu), the manifest list ros-course-multiarch
 	@/usr/bin/python3 $(ROOT)/tools/multiarch.py image $(MULTIARCH_ARGS)
 
-image-arm64-check:
+image-arm64-check: ## the arm64 image under emulation: the demo, course-check, make jupyter
 	@/usr/bin/python3 $(ROOT)/tools/multiarch.py check $(MULTIARCH_ARGS)
 
-image-figures:
+image-figures: ## the images' sizes, the demo's time emulated against native
 	@/usr/bin/python3 $(ROOT)/tools/multiarch.py figures $(MULTIARCH_ARGS)
 
 # ROS 1's own tutorials as an overlay on this workspace: built, their tests run, turtle_tf2's demos
@@ -153,8 +156,9 @@ ifeq ($(TUTORIALS),)
 $(error make tutorials-check TUTORIALS=DIR: the folder holding ros_tutorials, geometry_tutorials, common_tutorials)
 endif
 endif
-tutorials-check: build
+tutorials-check: build ## ROS 1's own tutorials as an overlay: built, tested, turtle_tf2's demos (TUTORIALS=DIR)
 	@$(ROSENV) cd $(ROOT) && python3 tools/tutorials_check.py $(abspath $(TUTORIALS)) $(TUTORIALS_CHECK_ARGS)
 
-clean:
-	rm -rf $(WS)/build $(WS)/devel $(WS)/build.log $(SOLUTIONS_WS)/build $(SOLUTIONS_WS)/devel $(SOLUTIONS_WS)/build.log
+clean: ## the workspaces' build and devel spaces, their build logs and the set-up's logs/
+	rm -rf $(WS)/build $(WS)/devel $(WS)/build.log $(SOLUTIONS_WS)/build $(SOLUTIONS_WS)/devel $(SOLUTIONS_WS)/build.log \
+	  $(ROOT)/logs

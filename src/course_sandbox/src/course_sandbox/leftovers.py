@@ -16,7 +16,8 @@ leaves, and how each is found:
   creating process is gone have their members killed and are removed.
 
 Its work folders are the output folder's (course_grader.runner: a grading's pid file there).
-Processes of a live grading, or of anything else, are never touched.
+Processes of a live grading, or of anything else, are never touched: nor those of another PID
+namespace (a container's gradings, marked with the pids of their own namespace).
 """
 from __future__ import annotations
 
@@ -90,7 +91,9 @@ def dead_gradings_processes() -> List[int]:
         if grader not in live:
             live[grader] = is_live_grader(grader)
         return not live[grader]
-    for pid in procs.pids():
+    # This PID namespace's processes only: a grading in a container is marked with its pid there,
+    # which names another process (or none) here, and is live all the same.
+    for pid in procs.local_pids():
         if pid == os.getpid():
             continue
         grader = grading_of(pid)

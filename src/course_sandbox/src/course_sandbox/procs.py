@@ -108,6 +108,13 @@ def members(namespace: str) -> List[int]:
     return [pid for pid in pids() if pid_namespace(pid) == namespace]
 
 
+def local_pids() -> List[int]:
+    """The processes of this process's own PID namespace, whose pids mean here what they say: a
+    container's (the course image's, a hub student's) or a sandbox's processes number theirs in a
+    namespace of their own, and one whose namespace cannot be read is not ours to judge."""
+    return members(pid_namespace(os.getpid()) or "")
+
+
 def namespace_pid(pid: int) -> Optional[int]:
     """The pid `pid` has in its own (innermost) PID namespace."""
     try:

@@ -74,22 +74,24 @@ jupyter: ## the student's workbench: JupyterLab at http://127.0.0.1:8888/lab?tok
 
 # The class's hub (docs/hub.md): JupyterHub at $(HUB_URL), each student a container of $(HUB_IMAGE)
 # (the student image) through podman's Docker API, accounts from $(HUB_CLASS_LIST), students' files in
-# $(HUB_DATA)/users/. Root. Its config: deploy/jupyterhub/jupyterhub_config.py.
+# $(HUB_DATA)/users/. Root. Its config: deploy/jupyterhub/jupyterhub_config.py; its plug-ins and commands:
+# the course_hub package in .venv-hub (tools/deps.sh installs it there with pip).
 HUB_DATA ?= /var/lib/ros-course-hub
 HUB_CLASS_LIST ?= $(ROOT)/deploy/jupyterhub/classlist.csv
 HUB_IMAGE ?= localhost/ros-course
 HUB_URL ?= http://127.0.0.1:8000
-HUB_ENV := HUB_DATA='$(HUB_DATA)' HUB_CLASS_LIST='$(abspath $(HUB_CLASS_LIST))' HUB_IMAGE='$(HUB_IMAGE)' HUB_URL='$(HUB_URL)'
+# the proxy, configurable-http-proxy, is found on PATH (npm's, in .hub/node)
+HUB_ENV := HUB_DATA='$(HUB_DATA)' HUB_CLASS_LIST='$(abspath $(HUB_CLASS_LIST))' HUB_IMAGE='$(HUB_IMAGE)' HUB_URL='$(HUB_URL)' \
+  PATH='$(ROOT)/.hub/node/node_modules/.bin':"$$PATH"
 hub: ## the class's JupyterHub, each student a container of the student image (root; docs/hub.md)
 	@COURSE_HUB=1 bash $(ROOT)/tools/deps.sh
-	@$(HUB_ENV) /usr/bin/python3 $(ROOT)/src/course_hub/scripts/hub --config $(ROOT)/deploy/jupyterhub/jupyterhub_config.py \
-	  --jupyterhub $(ROOT)/.venv-hub/bin/jupyterhub
+	@$(HUB_ENV) $(ROOT)/.venv-hub/bin/course-hub --config $(ROOT)/deploy/jupyterhub/jupyterhub_config.py
 
 # The hand-out sheet of initial passwords, $(HUB_DATA)/initial-passwords.csv (the hub's start fills it for
-# users without a password). RESET=alice gives alice a new one at once, while the hub runs or not.
+# users without a password: course-hub-passwords). RESET=alice gives alice a new one at once, while the hub runs or not.
 hub-password: ## the hand-out sheet of initial passwords; RESET=alice gives alice a new one
 	@COURSE_HUB=1 bash $(ROOT)/tools/deps.sh
-	@$(ROOT)/.venv-hub/bin/python $(ROOT)/src/course_hub/scripts/hub_passwords --data '$(HUB_DATA)' \
+	@$(ROOT)/.venv-hub/bin/course-hub-passwords --data '$(HUB_DATA)' \
 	  --class-list '$(abspath $(HUB_CLASS_LIST))' $(foreach u,$(RESET),--reset $(u))
 
 # At a deadline: every student's catkin_ws/src snapshotted read-only, graded as a class (the gradebook

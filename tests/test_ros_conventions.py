@@ -39,8 +39,9 @@ ROSDEP_KEYS = {
     "tornado": "python3-tornado",
     "PIL": "python3-pil",
     "bcrypt": "python3-bcrypt",
-    # the hub's own venv (.venv-hub): course_hub.auth is imported by JupyterHub there
+    # the hub's own venv (.venv-hub): course_hub.auth and course_hub.spawner are imported by JupyterHub there
     "firstuseauthenticator": "python3-jupyterhub-firstuseauthenticator",  # PyPI: tools/rosdep.yaml
+    "dockerspawner": "python3-dockerspawner",  # PyPI: tools/rosdep.yaml
     "traitlets": "python3-traitlets",
 }
 # ROS packages whose Python module has the package's name (Debian's ROS, or ours).

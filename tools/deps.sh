@@ -26,7 +26,7 @@ compgen -G "$root/solutions/*/package.xml" >/dev/null && have_solutions=1
 
 steps_total=2  # the Debian packages, the course's venv
 [ "${COURSE_JUPYTER:-1}" = 0 ] || steps_total=$((steps_total + 1))
-[ "${COURSE_HUB:-0}" != 1 ] || steps_total=$((steps_total + 3))
+[ "${COURSE_HUB:-0}" != 1 ] || steps_total=$((steps_total + 4))
 [ "$build" -eq 0 ] || steps_total=$((steps_total + 1 + have_solutions))
 step_no=0
 
@@ -72,6 +72,13 @@ pip_install() {  # pip_install DIR REQUIREMENTS STAMP SHA [venv options]: DIR ma
   { [ -x "$dir/bin/python3" ] || /usr/bin/python3 -m venv "$@" "$dir"; } \
     && "$dir/bin/python3" -m pip install --disable-pip-version-check -r "$requirements" \
     && echo "$sha" > "$stamp"
+}
+package_install() {  # package_install VENV PACKAGE STAMP SHA: the Python package in folder PACKAGE into VENV
+  # built from a copy of its pyproject.toml and src/, so that the build leaves nothing in the checkout
+  local copy
+  copy="$(mktemp -d)" && cp -r "$2/pyproject.toml" "$2/src" "$copy/" \
+    && "$1/bin/python3" -m pip install --disable-pip-version-check --no-deps --force-reinstall "$copy" \
+    && rm -rf "$copy" && echo "$4" > "$3"
 }
 npm_install() {  # npm_install DIR PACKAGE_JSON: the pinned node packages into DIR
   mkdir -p "$1" && cp "$2" "$1/package.json" && (cd "$1" && npm install --no-audit --no-fund --loglevel=error)
@@ -154,11 +161,22 @@ if [ "${COURSE_HUB:-0}" = 1 ]; then
     step_done "the hub's Debian packages" "present"
   fi
   # podman's --userns=auto (each student container in a user namespace of its own) takes its
-  # ranges from the `containers` entries (course_hub.hubconfig)
+  # ranges from the `containers` entries (course_hub.spawner's userns)
   for ids in /etc/subuid /etc/subgid; do
     grep -q '^containers:' "$ids" 2>/dev/null || echo "containers:1000000:1000000000" >> "$ids"
   done
   venv_step "JupyterHub" "$root/.venv-hub" "$root/requirements-hub.txt" "$logs/pip-venv-hub.log"
+  # course_hub, the course's JupyterHub plug-ins and the hub's commands (course-hub, course-hub-passwords),
+  # a package of the hub's venv (src/course_hub/pyproject.toml; its dependencies are the pins above),
+  # installed again whenever its sources change
+  hub_sha="$(cd "$root/src/course_hub" && find pyproject.toml src -type f -name '*.py' -o -name pyproject.toml \
+    | LC_ALL=C sort | xargs sha256sum | sha256sum | cut -d' ' -f1)"
+  if [ "$(cat "$root/.venv-hub/.course_hub.sha256" 2>/dev/null)" = "$hub_sha" ]; then
+    step_done "course_hub in .venv-hub" "up to date"
+  else
+    step "course_hub into .venv-hub with pip" "$logs/pip-course-hub.log" "$TAIL_LINES" \
+      package_install "$root/.venv-hub" "$root/src/course_hub" "$root/.venv-hub/.course_hub.sha256" "$hub_sha"
+  fi
   node_dir="$root/.hub/node"
   if ! cmp -s "$root/deploy/jupyterhub/package.json" "$node_dir/package.json" \
      || [ ! -x "$node_dir/node_modules/.bin/configurable-http-proxy" ]; then

@@ -4,9 +4,10 @@
     sudo make hub-check                                   # builds the student image, then checks
     sudo make hub-check HUB_CHECK_ARGS="--image localhost/ros-course-hub --no-build"
 
-The student image (docker/Dockerfile's default target), `make hub`'s own start (course_hub's
-runner: podman's Docker API on a socket of its own, JupyterHub with deploy/jupyterhub's config,
-a class list of a TA and four students, a scratch data folder), then the students at their
+The student image (docker/Dockerfile's default target), `make hub`'s own start (course-hub of the
+hub's venv: the data folder and initial passwords, podman's Docker API on a socket of its own,
+JupyterHub with deploy/jupyterhub's config, a class list of a TA and four students, a scratch
+data folder), then the students at their
 browsers (course_testkit.hub: the login form with its _xsrf, cookies, the hub's OAuth to each
 server, terminals through the hub's proxy):
 
@@ -62,7 +63,7 @@ from course_hub import passwords as hub_passwords  # noqa: E402
 from course_testkit.browser import chromium  # noqa: E402
 from course_testkit.hub import HubUser, LocalHub, SpawnFailed  # noqa: E402
 from course_testkit.jupyter import Terminal  # noqa: E402
-from course_testkit.waiting import wait_for  # noqa: E402
+from course_checks.waiting import wait_for  # noqa: E402
 
 STUDENTS = ("alice", "bob", "carol")
 # names that once shared folders (DockerSpawner escaped - as -2d, the hooks did not): each must
@@ -78,9 +79,10 @@ MILESTONE = "chatter"
 SAMPLES = ROOT / "tests" / "submissions"
 FILES = {"alice": SAMPLES / "lab2_chatter_scripts" / "lab2" / "src" / "chatter",
          "bob": SAMPLES / "lab2_chatter_no_chmod" / "chatter"}
-# dave's server is given too little memory to start
-CHECK_CONFIG = '''course_limit = c.DockerSpawner.mem_limit
-c.DockerSpawner.mem_limit = lambda spawner: %(small)r if spawner.user.name == %(failing)r else course_limit
+# dave's server is given too little memory to start; the others keep the course's limit
+CHECK_CONFIG = '''from course_hub import defaults
+course_limit = c.CourseSpawner.mem_limit if "mem_limit" in c.CourseSpawner else defaults.MEM_LIMIT
+c.CourseSpawner.mem_limit = lambda spawner: %(small)r if spawner.user.name == %(failing)r else course_limit
 ''' % {"small": TOO_LITTLE_MEMORY, "failing": FAILING}
 
 

@@ -1,35 +1,70 @@
-# JupyterHub for the ROS course: the one file a course adapts (docs/hub.md). `make hub` runs
-# JupyterHub with it (as root, podman's Docker API started beside it); course_hub.hubconfig does
-# the rest: each student a container of the student image on a network of their own, their
-# catkin_ws/src kept in <data>/users/<name>/src, TAs as admins, idle servers culled.
+# JupyterHub for the ROS course: the one file a course edits (docs/hub.md). Plain JupyterHub
+# configuration: the course's parts are two JupyterHub plug-ins of the course_hub package, which
+# `make hub` installs into the hub's venv (.venv-hub): CourseSpawner (DockerSpawner: each student a
+# container of the student image, on a disk and a network of their own) and CourseAuthenticator
+# (the class list's accounts, passwords, failed logins limited). Their traits are below;
+# `.venv-hub/bin/jupyterhub --help-all` lists every one.
 #
-# The class list, the data folder and the image also come from make's variables (HUB_CLASS_LIST,
-# HUB_DATA, HUB_IMAGE), so `make hub-grade` grades the same class from the same folder.
+# `make hub` (course-hub, course_hub.runner) lays out the data folder and gives every listed user
+# without a password an initial one (the hand-out sheet <data>/initial-passwords.csv) before it
+# starts JupyterHub with this file; loading this file does nothing but set configuration.
+# make's variables HUB_DATA, HUB_CLASS_LIST, HUB_IMAGE and HUB_URL arrive in the environment, so
+# that make hub-grade and make hub-password use the same class and folder.
 import os
 import sys
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-CHECKOUT = os.path.dirname(os.path.dirname(HERE))
-sys.path.insert(0, os.path.join(CHECKOUT, "src", "course_hub", "src"))
-sys.path.insert(0, HERE)  # course_spawner, the spawner hubconfig names
-from course_hub import hubconfig  # noqa: E402
+from course_hub import defaults
+from course_hub.names import subdomain_hook
+from course_hub.origins import subdomain_host
 
 c = get_config()  # noqa: F821 (JupyterHub's)
+env = os.environ.get
+data = env("HUB_DATA") or defaults.DATA_DIR  # the students' disks, the hub's database and secrets, gradings
 
-settings = hubconfig.HubSettings(
-    class_list=os.environ.get("HUB_CLASS_LIST") or os.path.join(HERE, "classlist.csv"),
-    data_dir=os.environ.get("HUB_DATA") or "/var/lib/ros-course-hub",
-    image=os.environ.get("HUB_IMAGE") or "localhost/ros-course",
-    bind_url=os.environ.get("HUB_URL") or "http://127.0.0.1:8000",  # behind a TLS proxy for a real class
-    # subdomain_host="https://hub.example.org",  # a class's public address: wildcard DNS and TLS (docs/hub.md)
-    hub_port=int(os.environ.get("HUB_API_PORT") or hubconfig.DEFAULT_HUB_PORT),  # the containers call it; make hub firewalls it
-    mem_limit="2G",          # per student: master, turtlesim, the lab page, a build (docs/hub.md's figures)
-    cpu_limit=1.0,           # cores per student, at most
-    idle_timeout_s=3600,     # a server idle this long is stopped; the files stay
-    proxy_command=[os.path.join(CHECKOUT, ".hub", "node", "node_modules", ".bin", "configurable-http-proxy")],
-)
-hubconfig.apply(c, settings)
-
-# Anything else is JupyterHub's own configuration, e.g.:
+# --- the hub ---------------------------------------------------------------------------------
+c.JupyterHub.bind_url = env("HUB_URL") or defaults.BIND_URL  # the proxy; TLS in front for a real class
+# Each student's server on its own origin, <user>.<host>: http://hub.localhost:<port> on one
+# machine. A class sets its public address instead, with wildcard DNS and a wildcard certificate:
+# c.JupyterHub.subdomain_host = "https://hub.example.org"
+c.JupyterHub.subdomain_host = subdomain_host(c.JupyterHub.bind_url)  # refuses a bind_url off loopback
+c.JupyterHub.subdomain_hook = subdomain_hook  # <user>.<host> named as everything else of the user
+# The containers call the hub's API on their network's gateway: it listens on every address,
+# and make hub closes its port to the network while it runs (course_hub.firewall)
+c.JupyterHub.hub_ip = "0.0.0.0"
+c.JupyterHub.hub_port = int(env("HUB_API_PORT") or defaults.HUB_API_PORT)
+c.JupyterHub.db_url = "sqlite:///" + os.path.join(data, "jupyterhub.sqlite")
+c.JupyterHub.cookie_secret_file = os.path.join(data, "jupyterhub_cookie_secret")
+c.ConfigurableHTTPProxy.pid_file = os.path.join(data, "jupyterhub-proxy.pid")
 # c.JupyterHub.ssl_cert = "/etc/letsencrypt/live/hub.example.org/fullchain.pem"
 # c.JupyterHub.ssl_key = "/etc/letsencrypt/live/hub.example.org/privkey.pem"
+
+# --- accounts: course_hub.auth.CourseAuthenticator (entry point "course") -------------------------
+c.JupyterHub.authenticator_class = "course_hub.auth.CourseAuthenticator"
+# who may log in (everyone listed, nobody else), TAs the admins, an initial password each
+c.CourseAuthenticator.class_list = env("HUB_CLASS_LIST") or os.path.join(os.path.dirname(__file__), "classlist.csv")
+c.CourseAuthenticator.data_dir = data  # passwords.dbm, initial-passwords.csv
+# c.CourseAuthenticator.failures_per_name = 5        # failed logins in the window, then refused
+# c.CourseAuthenticator.failures_per_address = 50
+# c.CourseAuthenticator.failure_window_s = 300.0
+# A campus login instead (OAuthenticator, LDAPAuthenticator ...): set authenticator_class, and
+# c.Authenticator.allowed_users / admin_users from the class list (course_hub.classlist.load).
+
+# --- each student: course_hub.spawner.CourseSpawner (entry point "course") ----------------------
+c.JupyterHub.spawner_class = "course_hub.spawner.CourseSpawner"
+c.CourseSpawner.data_dir = data  # <data>/disks/<user>.img mounted at <data>/users/<user>
+c.CourseSpawner.image = env("HUB_IMAGE") or defaults.IMAGE  # the student image, built on this machine
+# the course's defaults, per student (docs/hub.md's figures); uncomment to change:
+# c.CourseSpawner.mem_limit = "2G"      # master, turtlesim, the lab page, a build
+# c.CourseSpawner.cpu_limit = 1.0       # cores, at most
+# c.CourseSpawner.pids_limit = 1024     # processes, at most
+# c.CourseSpawner.disk_limit = "1G"     # their disk (catkin_ws/src, ~/grades), reserved when first made
+# c.CourseSpawner.home_limit = "512M"   # the home folder and /tmp, tmpfs counted in mem_limit
+# c.CourseSpawner.start_timeout = 180   # seconds for a server to start
+
+# --- idle servers: jupyterhub-idle-culler, with only the scopes it needs ------------------------
+# An idle server is stopped after an hour, any server after 12 h (its own token can report
+# activity); the culler looks every 5 min. The student's files stay.
+c.JupyterHub.services = [{"name": "idle-culler", "command": [
+    sys.executable, "-m", "jupyterhub_idle_culler", "--timeout=3600", "--max-age=43200", "--cull-every=300"]}]
+c.JupyterHub.load_roles = [{"name": "idle-culler", "services": ["idle-culler"],
+                            "scopes": ["list:users", "read:users:activity", "read:servers", "delete:servers"]}]

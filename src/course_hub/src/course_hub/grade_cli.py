@@ -16,7 +16,7 @@ student a row of empty cells, `not-graded.csv` beside it and the summary printed
 and the student's ~/grades/<stamp>/report.txt says so too.
 
 Every snapshot and every grading's output is root's alone once the grading is done: a later
-grading's student code (the sandbox's user) cannot read them (course_hub.hubconfig.data_modes).
+grading's student code (the sandbox's user) cannot read them (course_hub.layout.data_modes).
 
 Exit code: the grader's (0 when it graded everyone), 1 when some student was not graded, 2 on a
 bad class list or data folder.
@@ -31,14 +31,14 @@ import subprocess
 import sys
 from typing import Dict, List, Optional, Sequence
 
-from course_hub import classlist, grading, hubconfig
+from course_hub import classlist, grading, layout
 
 NOT_GRADED = "not-graded.csv"
 
 
 def parse(argv: Sequence[str]) -> argparse.Namespace:
     parser = argparse.ArgumentParser(prog="hub_grade", description=__doc__.split("\n\n")[0])
-    parser.add_argument("--data", required=True, help="the hub's data folder (HubSettings.data_dir)")
+    parser.add_argument("--data", required=True, help="the hub's data folder (CourseSpawner.data_dir)")
     parser.add_argument("--class-list", required=True, help="the class list CSV: its students are graded")
     parser.add_argument("--out", default="", help="the grader's output (default <data>/grades/<stamp>)")
     parser.add_argument("--only", action="extend", nargs="+", default=[], metavar="M", help="only these milestones")
@@ -67,7 +67,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         print("hub_grade: %s holds no users/ folder: is it the hub's data folder?" % args.data, file=sys.stderr)
         return 2
     stamp = args.stamp or datetime.datetime.now(datetime.timezone.utc).strftime("%Y%m%dT%H%M%SZ")
-    hubconfig.lay_out(args.data)
+    layout.lay_out(args.data)
     class_dir = os.path.join(args.data, "snapshots", stamp)
     out = args.out or os.path.join(args.data, "grades", stamp)
     if os.path.exists(class_dir):

@@ -19,7 +19,7 @@ what it claims, files, depth); past a bound the student is not graded, and told 
 `publish` copies a user's own folder of the grader's output (results.json, the milestones' JUnit,
 logs and canvas pictures) and a plain-text summary, never the class's gradebook or report.html,
 which name every student. The grades folder is mounted read-only into the user's container
-(course_hub.hubconfig), so the student reads it and cannot change it, and sees no one else's.
+(course_hub.containers), so the student reads it and cannot change it, and sees no one else's.
 """
 from __future__ import annotations
 

@@ -132,8 +132,9 @@ def handed_out(data_dir: str) -> Dict[str, str]:
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:
-    """`make hub-password RESET=alice`: a new initial password for a user, while the hub runs or
-    not; without --reset, the initial passwords the hub's start would give (users without one)."""
+    """`course-hub-passwords` (make hub-password RESET=alice): a new initial password for a user,
+    while the hub runs or not; without --reset, the initial passwords the hub's start gives (users
+    without one: on Kubernetes, the hub pod's init container runs this before the hub)."""
     parser = argparse.ArgumentParser(description=main.__doc__)
     parser.add_argument("--data", required=True, help="the hub's data folder (make hub's HUB_DATA)")
     parser.add_argument("--class-list", required=True, help="the class list CSV (HUB_CLASS_LIST)")
@@ -155,7 +156,11 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         for name, password in given:
             print("%s: new initial password %s (also on %s)" % (name, password, sheet))
         return 0
-    given = seed(dbm_path, users, sheet)
-    print("hub passwords: %d new initial password(s)%s on %s" % (
-        len(given), " (%s)" % ", ".join(name for name, _ in given) if given else "", sheet))
+    print("hub passwords: %s" % summary(seed(dbm_path, users, sheet), sheet))
     return 0
+
+
+def summary(given: Sequence[Tuple[str, str]], sheet_path: str) -> str:
+    """What a seed gave, in a line (the passwords themselves are on the sheet only)."""
+    return "%d new initial password(s)%s on %s" % (
+        len(given), " (%s)" % ", ".join(name for name, _ in given) if given else "", sheet_path)

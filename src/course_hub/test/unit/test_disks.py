@@ -12,7 +12,7 @@ import tempfile
 
 import pytest
 
-from course_hub import disks, grading, hubconfig, names
+from course_hub import disks, grading, layout, names
 
 ROOT = os.geteuid() == 0
 LOOP = os.path.exists("/dev/loop-control") and shutil.which("mkfs.ext4", path="/usr/sbin:/sbin:/usr/bin") is not None
@@ -82,7 +82,7 @@ def test_the_graders_sandbox_user_reads_no_snapshot_no_finished_grading_and_no_s
         os.makedirs(os.path.join(data, "users", "alice", "src", "pkg"))
         with open(os.path.join(data, "users", "alice", "src", "pkg", "answer.py"), "w") as out:
             out.write("alice's answer")
-        hubconfig.lay_out(data)
+        layout.lay_out(data)
         grading.snapshot(data, os.path.join(data, "snapshots", "first"), ["alice"])
         finished = os.path.join(data, "grades", "first")
         os.makedirs(os.path.join(finished, "alice"))

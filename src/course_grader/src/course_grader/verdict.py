@@ -177,16 +177,22 @@ def output_hints(folder: str, known: Iterable[str] = ()) -> List[str]:
     return seen
 
 
+# What a student reads in place of a folder of the grader's their node printed.
+GRADER_FOLDER = "<grader's folder>"
+
+
 def without_grader_paths(text: str, folders: Sequence[str]) -> str:
     """`text` for a student: each of the grader's `folders` (the work folder's src first) cut out of
     the paths it quotes, so `<work>/ws/src/chatter/scripts/talker.py` reads chatter/scripts/talker.py.
     A path a check quoted cut at its start (`...k/alice/ws/src/chatter/...`) loses its fragment too:
-    whatever ends with the folder's last three parts."""
+    whatever ends with the folder's last three parts. A folder quoted by itself (what a node printed
+    of its environment) reads GRADER_FOLDER."""
     for folder in folders:
         parts = [p for p in folder.rstrip("/").split("/") if p]
         if parts:
-            tail = re.escape("/".join(parts[-3:]) + "/")
-            text = re.sub(r"[^\s'\"(]*" + tail, "", text)
+            tail = re.escape("/".join(parts[-3:]))
+            text = re.sub(r"[^\s'\"(]*" + tail + "/", "", text)
+            text = re.sub(r"[^\s'\"(]*" + tail + r"(?![\w.-])", GRADER_FOLDER, text)
     return text
 
 

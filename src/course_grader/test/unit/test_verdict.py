@@ -102,6 +102,9 @@ def test_a_students_text_quotes_their_paths_from_the_package_down_even_cut_at_th
             "File \"/tmp/g/grades/_work/alice/ws/src/chatter/scripts/talker.py\"; see /tmp/g/grades/_work/alice/runs/x")
     assert verdict.without_grader_paths(text, [src, work, out]) == (
         "ending with 'chatter/scripts/talker.py\", line 3'\nFile \"chatter/scripts/talker.py\"; see runs/x")
+    printed = "output folder seen as '/tmp/g/grades'; looked in ['/tmp', '/tmp/g/grades/_work', '/tmp/g/gradesx']"
+    assert verdict.without_grader_paths(printed, [src, work, out]) == (
+        "output folder seen as '<grader's folder>'; looked in ['/tmp', '_work', '/tmp/g/gradesx']")
 
 
 def test_what_a_run_printed_adds_only_causes_the_files_did_not_name(tmp_path):

@@ -3,6 +3,8 @@ with the hub's own Python (.venv-hub: JupyterHub, DockerSpawner, FirstUseAuthent
 unit tests' Python has none of them (test_plugins.py runs this):
 
     .venv-hub/bin/python3 hub_probe.py < request.json > answer.json
+    .venv-hub/bin/python3 hub_probe.py --serve   (a request per line, {"request": ..., "env": {...}},
+                                                 an answer per line: one start of JupyterHub's imports)
 
 The request (JSON): `config_file` (a JupyterHub config file, read as JupyterHub reads it) and/or
 `config` ({section: {trait: value}}, applied over it); `user`; `action`:
@@ -23,6 +25,7 @@ from __future__ import annotations
 
 import json
 import logging
+import os
 import sys
 import types
 from typing import Any, Dict, List
@@ -119,13 +122,36 @@ def prepare(request: Dict[str, Any]) -> Dict[str, Any]:
     return {"lines": runner.prepare(request["config_file"], rounds=4)}
 
 
+def answer(request: Dict[str, Any], warnings: Warnings) -> Dict[str, Any]:
+    warnings.seen = []
+    made = {"traits": traits, "spawn": spawn, "prepare": prepare}[request["action"]](request)
+    made["warnings"] = warnings.seen
+    return made
+
+
+def with_env(env: Dict[str, str]) -> None:
+    """The process's environment as a request's own: the HUB_* variables the config file reads are
+    the request's alone."""
+    for key in [k for k in os.environ if k.startswith("HUB_")]:
+        del os.environ[key]
+    os.environ.update(env)
+
+
 def main() -> int:
-    request = json.load(sys.stdin)
     warnings = Warnings()
     logging.getLogger().addHandler(warnings)
-    answer = {"traits": traits, "spawn": spawn, "prepare": prepare}[request["action"]](request)
-    answer["warnings"] = warnings.seen
-    json.dump(answer, sys.stdout)
+    if "--serve" not in sys.argv[1:]:
+        json.dump(answer(json.load(sys.stdin), warnings), sys.stdout)
+        return 0
+    for line in sys.stdin:
+        message = json.loads(line)
+        with_env(message.get("env") or {})
+        try:
+            made = answer(message["request"], warnings)
+        except Exception as err:  # noqa: BLE001 - told to the test, which fails with it
+            made = {"crash": "%s: %s" % (type(err).__name__, err)}
+        sys.stdout.write(json.dumps(made) + "\n")
+        sys.stdout.flush()
     return 0
 
 

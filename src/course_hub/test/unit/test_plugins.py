@@ -35,15 +35,47 @@ pytestmark = pytest.mark.skipif(not os.access(HUB_PYTHON, os.X_OK), reason="the 
                                 "there: make hub's set-up makes it (COURSE_HUB=1 bash tools/deps.sh)")
 
 
+class Probe:
+    """hub_probe.py --serve, run by the hub's Python on this checkout's course_hub (the ROS
+    workspace's Python path left out: the hub's venv has its own), started once for the module:
+    JupyterHub's imports take seconds, a request milliseconds."""
+
+    def __init__(self) -> None:
+        clean = {k: v for k, v in os.environ.items()
+                 if k not in ("PYTHONPATH", "PYTHONHOME") and not k.startswith("HUB_")}
+        self.proc = subprocess.Popen([HUB_PYTHON, os.path.join(UNIT, "hub_probe.py"), "--serve"],
+                                     stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True,
+                                     env=dict(clean, PYTHONPATH=PACKAGE_SRC))
+
+    def ask(self, request, env=None):
+        self.proc.stdin.write(json.dumps({"request": request, "env": env or {}}) + "\n")
+        self.proc.stdin.flush()
+        line = self.proc.stdout.readline()
+        assert line, "hub_probe.py ended (exit code %s)" % self.proc.wait(10)
+        answer = json.loads(line)
+        assert "crash" not in answer, answer["crash"]
+        return answer
+
+    def close(self) -> None:
+        self.proc.stdin.close()
+        self.proc.wait(30)
+
+
+@pytest.fixture(scope="module", autouse=True)
+def hub_probe():
+    started = Probe()
+    PROBES.append(started)
+    yield started
+    PROBES.remove(started)
+    started.close()
+
+
+PROBES = []  # the module's running probe (hub_probe's fixture), for probe()
+
+
 def probe(request, env=None):
-    """hub_probe.py's answer to `request`, run by the hub's Python on this checkout's course_hub
-    (the ROS workspace's Python path left out: the hub's venv has its own)."""
-    clean = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME") and not k.startswith("HUB_")}
-    clean.update(env or {}, PYTHONPATH=PACKAGE_SRC)
-    done = subprocess.run([HUB_PYTHON, os.path.join(UNIT, "hub_probe.py")], input=json.dumps(request),
-                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=clean, timeout=120)
-    assert done.returncode == 0, done.stderr
-    return json.loads(done.stdout)
+    """hub_probe.py's answer to `request`, with the HUB_* variables of `env`."""
+    return PROBES[-1].ask(request, env)
 
 
 def made(config=None, config_file=None, user="alice", env=None, authenticator=True):

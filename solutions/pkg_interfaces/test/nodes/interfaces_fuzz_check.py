@@ -32,6 +32,14 @@ class InterfacesFuzz(unittest.TestCase):
         cls.progress = actionlib.SimpleActionClient("/progress", ProgressAction)
         assert cls.progress.wait_for_server(rospy.Duration(30))
 
+    def ended(self) -> bool:
+        """Whether the goal ended within WAIT_S, read from its own goal handle. SimpleActionClient's
+        wait_for_result misses a goal the server ends at once (a refused num) when the result comes
+        before send_goal has stored the goal's handle: that transition is dropped ("Got a transition
+        callback on a goal handle that we're not tracking", ros/actionlib issue 206, no fix upstream)
+        and it waits out its timeout though the goal is over (seen 2 runs in 6, and in the image)."""
+        return wait_for(lambda: self.progress.gh.get_comm_state() == actionlib.CommState.DONE, WAIT_S)
+
     def final_state(self) -> int:
         """The goal's terminal state. actionlib's client calls a goal LOST when a stale status array
         (published before the goal was accepted) arrives late, until the result message brings
@@ -56,7 +64,7 @@ class InterfacesFuzz(unittest.TestCase):
     def test_progress_refuses_a_num_whose_sum_overflows_int64(self):
         for num in (MAX_NUM + 1, 2 ** 63 - 1):
             self.progress.send_goal(ProgressGoal(num))
-            self.assertTrue(self.progress.wait_for_result(rospy.Duration(WAIT_S)), "num=%d was accepted" % num)
+            self.assertTrue(self.ended(), "num=%d was accepted" % num)
             self.assertEqual(self.final_state(), GoalStatus.ABORTED)
             self.assertIn("the sum must fit int64", self.progress.get_goal_status_text())
 
@@ -76,17 +84,17 @@ class InterfacesFuzz(unittest.TestCase):
         started = threading.Event()
         self.progress.send_goal(ProgressGoal(num), feedback_cb=lambda _fb: started.set())
         if not 1 <= num <= MAX_NUM:
-            self.assertTrue(self.progress.wait_for_result(rospy.Duration(WAIT_S)), "goal num=%d was not refused" % num)
+            self.assertTrue(self.ended(), "goal num=%d was not refused" % num)
             self.assertEqual(self.final_state(), GoalStatus.ABORTED)
             self.assertIn("num must be in [1, %d]" % MAX_NUM, self.progress.get_goal_status_text())
         elif num <= 2:
-            self.assertTrue(self.progress.wait_for_result(rospy.Duration(WAIT_S)), "num=%d did not end" % num)
+            self.assertTrue(self.ended(), "num=%d did not end" % num)
             self.assertEqual(self.final_state(), GoalStatus.SUCCEEDED)
             self.assertEqual(self.progress.get_result().sum, num * (num + 1) // 2)
         else:  # a long sum: it runs, and stops when cancelled
             self.assertTrue(started.wait(WAIT_S), "no feedback for num=%d" % num)
             self.progress.cancel_goal()
-            self.assertTrue(self.progress.wait_for_result(rospy.Duration(WAIT_S)), "num=%d did not stop on cancel" % num)
+            self.assertTrue(self.ended(), "num=%d did not stop on cancel" % num)
             if self.final_state() == GoalStatus.SUCCEEDED:  # a short sum may end before the cancel
                 self.assertEqual(self.progress.get_result().sum, num * (num + 1) // 2)
             else:

@@ -99,12 +99,6 @@ def summarise(log: str, ws: str, lines: int = SUMMARY_LINES) -> str:
     def package_xml(folder: str) -> Optional[str]:
         data = student_files.read_file(os.path.join(ws, "src"), folder + "/package.xml", 64 * 1024)
         return data.decode("utf-8", "replace") if data is not None else None
-    return summarise_text(text, package_xml, lines)
-
-
-def summarise_text(text: str, package_xml: Callable[[str], Optional[str]], lines: int = SUMMARY_LINES) -> str:
-    """summarise's work on a log whose paths are already the student's; `package_xml(folder)` is
-    the text of `<folder>/package.xml` (a folder of the workspace's src), None when unreadable."""
     all_lines = [_strip_colour(line.rstrip()) for line in text.splitlines()]
     targets = _failed_targets(all_lines)
     compiled = _compiler_errors(all_lines)

@@ -160,19 +160,20 @@ def find_role(started: Sequence[Script], condition: Callable[[Registration], boo
 
 def describe(started: Sequence[Script], known: Dict[str, int]) -> str:
     """What each started executable did, for a failure message: 'a.py publishes /x; b.py exited (code 1)'."""
-    parts = []
-    for s in started:
-        regs = registrations_of(s, known)
-        if not s.node.running() and not regs:
-            parts.append("%s exited (code %s)%s" % (s.name, s.node.proc.returncode, last_words(s)))
-            continue
-        words = []
-        for kind in ("publishes", "subscribes", "services"):
-            names = sorted({n for r in regs for n in own_names(getattr(r, kind))})
-            if names:
-                words.append("%s %s" % ("offers" if kind == "services" else kind, ", ".join(names)))
-        parts.append("%s %s" % (s.name, " and ".join(words) if words else "registered nothing"))
-    return "; ".join(parts) or "(no executables)"
+    return "; ".join("%s %s" % (s.name, did(s, known)) for s in started) or "(no executables)"
+
+
+def did(started: Script, known: Dict[str, int]) -> str:
+    """What one started executable did, its name left out: 'offers /turtle1/patrol', 'exited (code 1)...'."""
+    regs = registrations_of(started, known)
+    if not started.node.running() and not regs:
+        return "exited (code %s)%s" % (started.node.proc.returncode, last_words(started))
+    words = []
+    for kind in ("publishes", "subscribes", "services"):
+        names = sorted({n for r in regs for n in own_names(getattr(r, kind))})
+        if names:
+            words.append("%s %s" % ("offers" if kind == "services" else kind, ", ".join(names)))
+    return " and ".join(words) if words else "registered nothing"
 
 
 def role_missing(text: str, started: Sequence[Script], known: Dict[str, int], kind: str) -> str:

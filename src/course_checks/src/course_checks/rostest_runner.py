@@ -123,11 +123,13 @@ def read_results(results_dir: str) -> Tuple[int, List[Tuple[str, str]], Optional
 def run_rostest(pkg: str, test_file: str, args: Sequence[str] = (), env: Optional[dict] = None,
                 results_dir: Optional[str] = None, timeout: float = DEFAULT_TIMEOUT_S,
                 own_network: bool = True) -> RostestResult:
-    """Run `rostest pkg test_file args...` isolated (see the module docstring) and judge it."""
+    """Run `rostest pkg test_file args...` isolated (see the module docstring) and judge it; with
+    `pkg` empty, `test_file` is the rostest file's path."""
     results_dir = results_dir or tempfile.mkdtemp(prefix="rostest-")
     os.makedirs(results_dir, exist_ok=True)
     token = isolation.new_token()
-    command = isolation.isolated_command(["rostest", pkg, test_file] + list(args), own_network)
+    command = isolation.isolated_command(["rostest"] + ([pkg] if pkg else []) + [test_file] + list(args),
+                                         own_network)
     output = CappedText()
     started = time.monotonic()
     proc = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,

@@ -1,10 +1,11 @@
-"""rosrun course_grader grade [SUBMISSION...] [--class DIR] [--jobs N] [--only M ...] [--out DIR]
-                             [--boilerplate DIR ...] [--regrade STUDENT]
+"""rosrun course_grader grade [SUBMISSION...] [--class DIR] [--course DIR] [--jobs N] [--only M ...]
+                             [--out DIR] [--boilerplate DIR ...] [--regrade STUDENT]
 
 Grades each SUBMISSION (a folder, .zip or .tar.gz of catkin packages), or every entry of a class
-folder (--class DIR), against the course milestones; with neither, grades the course's own
-reference solutions (every milestone; the checkout's solutions/ folder, built and run as an
-overlay like a student's). The grader runs in the course workspace's environment alone: started
+folder (--class DIR), against the milestones of a course (--course DIR: a folder with a
+course.yaml, docs/course_format.md; default the built-in course, courses/robotics_labs); with
+neither, grades the course's own reference solution (every milestone; for the built-in course
+the checkout's solutions/ folder, built and run as an overlay like a student's). The grader runs in the course workspace's environment alone: started
 from another (the reference overlay sourced), it starts itself again in the course's.
 Writes under --out (default ./grades):
   <student>/<milestone>/junit.xml, *.log, *.png   verdict, student logs, canvas snapshots
@@ -32,7 +33,8 @@ import tempfile
 import time
 from typing import List, Optional, Set, Tuple
 
-from course_milestones.registry import MILESTONES
+from course_milestones import course_file
+from course_milestones.milestone import Milestone
 from course_sandbox import leftovers, levels
 from course_sandbox.policy import Limits, MiB
 
@@ -105,6 +107,8 @@ def parse(argv: Optional[List[str]]) -> argparse.Namespace:
                         help="code every student was given (a template): left out of the similarity check")
     parser.add_argument("--regrade", metavar="STUDENT",
                         help="grade only STUDENT again, into the earlier grading in --out (see above)")
+    parser.add_argument("--course", metavar="DIR", default="",
+                        help="the course: a folder holding course.yaml (default: the built-in course)")
     parser.add_argument("--list", action="store_true", help="list the milestones and exit")
     parser.add_argument("-v", "--verbose", action="store_true", help="a line per milestone run too")
     return parser.parse_args(argv)
@@ -175,11 +179,24 @@ def similarity_lines(pairs: List) -> List[str]:
             % (len(pairs), pairs[0].student_a, pairs[0].student_b, pairs[0].package, pairs[0].score)]
 
 
+def load_course(path: str) -> course_file.Course:
+    """The course to grade against: `path`'s, else the built-in one."""
+    return course_file.load(os.path.abspath(path) if path else course_file.builtin_course_dir())
+
+
 def main(argv: Optional[List[str]] = None) -> int:
     opts = parse(argv)
+    try:
+        course = load_course(opts.course)
+    except course_file.CourseError as err:
+        print("cannot grade: the course file has errors:\n%s" % err, file=sys.stderr)
+        return 2
+    MILESTONES: List[Milestone] = course.milestones
+    builtin = course.root == course_file.builtin_course_dir()
     if opts.list:
         for m in MILESTONES:
-            print("%-18s %5g pts  %-24s %-20s %s" % (m.name, m.points, m.text, m.test_file, " ".join(m.packages)))
+            check = m.test_file and os.path.basename(m.test_file) or "%d steps" % len(m.steps)
+            print("%-18s %5g pts  %-24s %-20s %s" % (m.name, m.points, m.text, check, " ".join(m.packages)))
         return 0
     names = {m.name for m in MILESTONES}
     opts.only, more = split_only(opts.only, names)
@@ -203,7 +220,7 @@ def main(argv: Optional[List[str]] = None) -> int:
         print("--results-json needs exactly one submission", file=sys.stderr)
         return 2
     if reference:
-        solutions = workspace.reference_solutions(workspace.course_setup())
+        solutions = workspace.reference_solutions(workspace.course_setup()) if builtin else course.solution
         if solutions is None:
             print("no submission given, and this course has no reference solutions to grade (the student "
                   "image holds none): grade SUBMISSION... or --class DIR", file=sys.stderr)
@@ -225,7 +242,8 @@ def main(argv: Optional[List[str]] = None) -> int:
     try:
         grader = Grader(MILESTONES, Options(out, opts.jobs, opts.only, opts.only_from, opts.timeout,
                                             opts.verbose or reference, [s.path for s in subs if s.path],
-                                            opts.builds, opts.disk * MiB))
+                                            opts.builds, opts.disk * MiB,
+                                            [a for a in (course.solution, course.samples) if a]))
     except levels.Unavailable as err:
         release_output(out)
         print("cannot grade: %s" % err, file=sys.stderr)

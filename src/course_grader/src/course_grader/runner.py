@@ -28,10 +28,10 @@ import time
 import traceback
 import zipfile
 from concurrent.futures import ThreadPoolExecutor
-from typing import Callable, Dict, List, NamedTuple, Optional, Sequence
+from typing import Callable, Dict, List, NamedTuple, Optional, Sequence, Tuple
 
 from course_milestones.milestone import Milestone
-from course_milestones import causes, unbuilt
+from course_milestones import causes, course_file, unbuilt
 from course_milestones.scripts import script_problems
 from course_checks import junit
 from course_checks.artifacts import ENV_VAR as ARTIFACTS_VAR
@@ -49,6 +49,18 @@ from course_grader.typical_durations import TYPICAL_S
 from course_grader.verdict import Verdict
 
 MILESTONE_PACKAGE = "course_milestones"
+
+
+def rostest_of(m: Milestone, run_dir: str) -> Tuple[str, str]:
+    """The package and rostest file that check `m` (package "": the file's path): a built-in
+    Python check's file in course_milestones, a course's own (a path), or, for a data milestone,
+    the file written here that starts its world and the generic check node."""
+    if m.test_file:
+        return ("", m.test_file) if os.path.isabs(m.test_file) else (MILESTONE_PACKAGE, m.test_file)
+    path = os.path.join(run_dir, "%s.test" % m.name)
+    with open(path, "w") as f:
+        f.write(course_file.test_launch(m))
+    return "", path
 REFERENCE = "reference"
 PID_FILE = "grading.pid"  # in WORK_DIR: the pid of the grading that writes this output folder
 KEPT_IN_WORK = ("durations.json", PID_FILE)
@@ -129,6 +141,7 @@ class Options(NamedTuple):
     sources: Sequence[str] = ()  # the submissions' own paths (the class folder): hidden from student code
     builds: int = 1  # submissions unpacked and built at once, beside the `jobs` runs
     disk_bytes: int = Limits().disk_bytes  # what one student's work folder may take on disk in total
+    answers: Sequence[str] = ()  # the course's reference solution and samples: hidden from student code
 
 
 class _Progress:
@@ -165,7 +178,8 @@ class Grader:
         self._builds = ThreadPoolExecutor(max(1, options.builds), thread_name_prefix="build")
         self._setup = workspace.course_setup()
         self.sandbox = SandboxPlan(options.out, workspace.course_root(self._setup), options.sources,
-                                   reference=workspace.reference_folders(self._setup),
+                                   reference=workspace.reference_folders(self._setup) + [
+                                       a for a in options.answers if a],
                                    limits=Limits(disk_bytes=options.disk_bytes))
 
     # -- scheduling -------------------------------------------------------------------------
@@ -345,8 +359,8 @@ class Grader:
                                          disk_folder=self._work_dir(sub.name))
             policy_path = policy.write(os.path.join(run_dir, "sandbox_policy.json"))
             run_env = dict(env, **{ARTIFACTS_VAR: artifacts, POLICY_VAR: policy_path})
-            result = run_rostest(MILESTONE_PACKAGE, m.test_file, env=run_env, results_dir=run_dir,
-                                 timeout=self.options.timeout)
+            package, test_file = rostest_of(m, run_dir)
+            result = run_rostest(package, test_file, env=run_env, results_dir=run_dir, timeout=self.options.timeout)
             with open(os.path.join(artifacts, "rostest.txt"), "w") as f:
                 f.write(result.output)
             if self._stop.is_set() and not result.passed:  # ended by the interruption: no verdict

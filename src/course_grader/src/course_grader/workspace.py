@@ -91,9 +91,12 @@ def course_root(setup_bash: str) -> str:
 
 
 def reference_folders(setup_bash: str) -> List[str]:
-    """The checkout's reference solutions and their overlay workspace (whether or not they exist)."""
+    """The checkout's answers: the reference solutions and their overlay workspace (whether or not
+    they exist), and every course folder's solution and samples (docs/course_format.md)."""
     root = course_root(setup_bash)
-    return [os.path.join(root, SOLUTIONS_DIR), os.path.join(root, SOLUTIONS_WS)]
+    answers = sorted(glob.glob(os.path.join(root, "courses", "*", "solution"))
+                     + glob.glob(os.path.join(root, "courses", "*", "samples")))
+    return [os.path.join(root, SOLUTIONS_DIR), os.path.join(root, SOLUTIONS_WS)] + answers
 
 
 def reference_solutions(setup_bash: str) -> Optional[str]:

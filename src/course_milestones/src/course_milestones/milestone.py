@@ -1,7 +1,17 @@
-"""What a milestone is: a rostest in course_milestones that checks one milestone of a course text."""
+"""What a milestone is: one gradable milestone of a course, read from its course file
+(course_milestones.course_file), checked by a rostest: a Python check's, or the generic
+`course_check` running the milestone's steps."""
 from __future__ import annotations
 
-from typing import NamedTuple, Tuple
+from typing import Any, Dict, NamedTuple, Tuple
+
+
+class Step(NamedTuple):
+    """One step of a data milestone: a primitive of course_milestones.steps.schema."""
+
+    primitive: str
+    params: Dict[str, Any]  # every parameter of the primitive, defaults filled in
+    where: str  # "course.yaml:14 (milestones[1].steps[2])", for a message about this step
 
 
 class Milestone(NamedTuple):
@@ -10,11 +20,16 @@ class Milestone(NamedTuple):
     name: short id used on the command line (`--only NAME`), in the gradebook and in JUnit names.
     title: what the milestone is, in the text's words.
     text: the course text and section it comes from (e.g. "002 Lab 2, checkpoint 1").
-    test_file: the rostest file under course_milestones/test/.
+    test_file: a Python check's rostest file: a name under course_milestones/test/, or the path of
+        one in the course's checks/ folder; "" for a data milestone (steps).
     packages: the package names the text makes the student write; the milestone grades a
         submission only if the submission holds at least one of them. Empty: the milestone checks
         the course workspace itself (simulators, tools) and is graded for the reference only.
     points: the milestone's weight in the gradebook.
+    steps: a data milestone's steps, in order.
+    world: the trusted nodes a data milestone starts before the student's (schema.WORLDS).
+    course_file: the course.yaml it comes from.
+    time_limit: seconds the milestone's rostest may take.
     """
 
     name: str
@@ -23,3 +38,7 @@ class Milestone(NamedTuple):
     test_file: str
     packages: Tuple[str, ...] = ()
     points: float = 10.0
+    steps: Tuple[Step, ...] = ()
+    world: Tuple[str, ...] = ()
+    course_file: str = ""
+    time_limit: float = 90.0

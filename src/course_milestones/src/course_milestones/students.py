@@ -255,19 +255,29 @@ def start_and_wait(command: Sequence[str], wanted: Callable[[Registration], bool
     it. Returns the keyboard (still running), the registration (or None) and what it registered."""
     before = node_uris()
     keyboard = PtyKeyboard(command, log_path=artifact_path(log_name), env=env, sandbox=run_sandbox())
+    found, seen = wait_registering(keyboard, before, wanted, timeout)
+    return keyboard, found, seen
+
+
+def wait_registering(process: PtyKeyboard, before: Dict[str, str], wanted: Callable[[Registration], bool],
+                     timeout: float = REGISTER_TIMEOUT, settle: float = SETTLED,
+                     ) -> Tuple[Optional[Registration], List[Registration]]:
+    """Wait until a node registered since `before` (name -> URI) satisfies `wanted`, while
+    `process` (a node, or roslaunch) runs; gives up after `timeout`, or once new nodes have been
+    registered for `settle` seconds without it. The registration (or None) and every new one."""
     deadline = time.monotonic() + timeout
     first_seen: Optional[float] = None
     while True:
         seen = new_registrations(before)
         for reg in seen:
             if wanted(reg):
-                return keyboard, reg, seen
+                return reg, seen
         now = time.monotonic()
         if seen and first_seen is None:
             first_seen = now
-        settled = first_seen is not None and now - first_seen > SETTLED
-        if now > deadline or settled or not keyboard.node.running():
-            return keyboard, None, seen
+        settled = first_seen is not None and now - first_seen > settle
+        if now > deadline or settled or not process.node.running():
+            return None, seen
         time.sleep(0.1)
 
 

@@ -1,0 +1,116 @@
+"""The primitives a course file's `steps:` may name, with the parameters each takes.
+
+A step is a one-key mapping, `{primitive: {parameter: value, ...}}`. This module is the format's
+one source of truth: the course file loader (course_milestones.course_file) validates every step
+against it (an unknown primitive or parameter, a missing or mistyped value is an error naming the
+file, the line and the field), and the check node (course_milestones.steps.run) implements each
+primitive named here. No ROS import: it is read where no master runs.
+
+Actions change the world (start the student's node, publish, call, type keys, set a parameter);
+checks observe it and fail with a cause (course_milestones.causes). Steps run in order; the first
+failing check ends the milestone with its finding.
+"""
+from __future__ import annotations
+
+from typing import Any, Dict, NamedTuple, Tuple
+
+# value kinds a parameter may take
+STR, NUMBER, INT, BOOL, LIST, MAP, ANY = "str", "number", "int", "bool", "list", "map", "any"
+# a predicate on a value (a message field, a parameter, a service response field):
+# {equals: V} {approx: V, tolerance: T} {matches: REGEX} {between: [LO, HI]} {nonempty: true}
+PREDICATE_KEYS = ("equals", "approx", "tolerance", "matches", "between", "nonempty")
+
+
+class Param(NamedTuple):
+    name: str
+    kind: str
+    required: bool = False
+    default: Any = None
+    doc: str = ""
+
+
+class Primitive(NamedTuple):
+    name: str
+    action: bool  # an action changes the world; a check observes it and may fail
+    params: Tuple[Param, ...]
+    doc: str
+
+    def param(self, name: str) -> Param:
+        return {p.name: p for p in self.params}[name]
+
+
+NODE = Param("node", STR, doc="the student's node: a `start` step's `as` name, or a node name (/mimic); "
+                             "default: the node the last `start` step found")
+WITHIN = Param("within", NUMBER, default=15.0, doc="seconds to wait for it")
+
+PRIMITIVES: Dict[str, Primitive] = {p.name: p for p in (
+    Primitive("start", True, (
+        Param("rosrun", STR, doc="the text's command after `rosrun`: 'PKG SCRIPT'"),
+        Param("roslaunch", STR, doc="the text's command after `roslaunch`: 'PKG FILE.launch'"),
+        Param("args", LIST, default=[], doc="more command-line words (e.g. turtle1, _rate:=5)"),
+        Param("find", MAP, doc="what the started node must register when the text leaves the executable or "
+                               "launch file open: {publishes|subscribes|advertises: NAME} or {node: /NAME}; the "
+                               "text's name is tried first, then each other of the package's"),
+        Param("as", STR, doc="the name later steps use for this node (default: the script's name)"),
+        Param("within", NUMBER, default=25.0, doc="seconds for a started node to register"),
+    ), "start the student's executable (rosrun) or launch file (roslaunch) in the sandbox"),
+    Primitive("publishes", False, (
+        Param("topic", STR, True), Param("type", STR, doc="the message type, pkg/Name"), NODE,
+        Param("min_rate", NUMBER, doc="Hz, at least"), Param("max_rate", NUMBER, doc="Hz, at most"),
+        Param("count", INT, default=2, doc="messages to receive"),
+        Param("fields", MAP, default={}, doc="field path (data, linear.x) -> predicate; every message received "
+                                             "must satisfy them"),
+        WITHIN,
+    ), "the student's node publishes on a topic, with a type, a rate and fields as given"),
+    Primitive("subscribes", False, (Param("topic", STR, True), NODE, WITHIN),
+              "the student's node subscribes to a topic"),
+    Primitive("advertises", False, (Param("service", STR, True), Param("type", STR), NODE, WITHIN),
+              "the student's node offers a service, of a type"),
+    Primitive("call", True, (
+        Param("service", STR, True),
+        Param("request", MAP, default={}, doc="request field -> value"),
+        Param("expect", MAP, default={}, doc="response field -> predicate"),
+        WITHIN,
+    ), "call a service (the student's) and check its answer"),
+    Primitive("publish", True, (
+        Param("topic", STR, True), Param("type", STR, True), Param("message", MAP, default={}),
+        Param("rate", NUMBER, default=10.0), Param("duration", NUMBER, default=1.0),
+    ), "publish a message for a while (e.g. cmd_vel to the student's node)"),
+    Primitive("set_param", True, (Param("name", STR, True), Param("value", ANY, True)),
+              "`rosparam set NAME VALUE`"),
+    Primitive("param_is", False, (Param("name", STR, True), Param("expect", MAP, True, doc="a predicate"), WITHIN),
+              "a parameter on the server has a value"),
+    Primitive("prints", False, (
+        NODE, Param("pattern", STR, True, doc="a regular expression a line of the node's output matches"),
+        Param("within", NUMBER, default=10.0),
+    ), "the node prints a line matching a pattern, after the last action"),
+    Primitive("type", True, (NODE, Param("keys", STR, True), Param("pause", NUMBER, default=0.1)),
+              "type keys on the node's terminal"),
+    Primitive("teleport", True, (
+        Param("turtle", STR, default="turtle1"), Param("x", NUMBER, True), Param("y", NUMBER, True),
+        Param("theta", NUMBER, default=0.0),
+    ), "put a turtle of the course's turtlesim at a place"),
+    Primitive("turtle_moves", False, (
+        Param("turtle", STR, default="turtle1"),
+        Param("direction", STR, default="any", doc="any, forward, backward, left (turns), right (turns)"),
+        Param("min_distance", NUMBER, default=0.2, doc="m (or rad for a turn)"),
+        Param("within", NUMBER, default=5.0),
+    ), "a turtle moves, after the last action"),
+    Primitive("running", False, (Param("nodes", LIST, True, doc="node names"), WITHIN),
+              "nodes of these names are registered with the master"),
+    Primitive("generated", False, (
+        Param("messages", LIST, default=[], doc="pkg/Name"), Param("services", LIST, default=[]),
+        Param("actions", LIST, default=[]),
+    ), "the student's build generated these messages, services and actions"),
+    Primitive("tf_frame", False, (Param("frame", STR, True), Param("parent", STR), WITHIN),
+              "a TF frame exists (with a parent)"),
+    Primitive("tf_follows", False, (
+        Param("frame", STR, True), Param("target", STR, True),
+        Param("distance", NUMBER, default=1.0, doc="m: how close it comes"), Param("within", NUMBER, default=30.0),
+    ), "a TF frame comes within a distance of another"),
+)}
+
+# The trusted nodes a milestone's `world:` may start before the student's (rostest <node> lines).
+WORLDS: Dict[str, Tuple[str, str]] = {
+    "turtlesim": ("turtlesim", "turtlesim_node"),
+}

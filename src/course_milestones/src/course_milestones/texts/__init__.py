@@ -1,1 +1,0 @@
-"""The milestones of each course text, one module per text (000-004)."""

@@ -108,9 +108,11 @@ hub-check: build ## the hub end to end with real parts: podman, students, a TA, 
 	@COURSE_HUB=1 bash $(ROOT)/tools/deps.sh
 	@$(REFENV) cd $(ROOT) && python3 tools/hub_check.py $(HUB_CHECK_ARGS)
 
-# Gradescope autograder: setup.sh + run_autograder + this repository; MILESTONES="chatter ..." grades only those.
-autograder: build ## autograder.zip for Gradescope (MILESTONES="chatter ..." grades only those)
-	@$(ROSENV) rosrun course_grader make_autograder --out $(ROOT)/autograder.zip $(foreach m,$(MILESTONES),--only $(m))
+# Gradescope autograder: setup.sh + run_autograder + this repository; MILESTONES="chatter ..." grades only those,
+# COURSE=courses/NAME grades that course (its solution/ and samples/ left out, as every course's).
+autograder: build ## autograder.zip for Gradescope (MILESTONES="chatter ..." grades only those; COURSE=DIR another course)
+	@$(ROSENV) rosrun course_grader make_autograder --out $(ROOT)/autograder.zip $(foreach m,$(MILESTONES),--only $(m)) \
+	  $(if $(COURSE),--course $(abspath $(COURSE)))
 
 bench: build ## the benchmarks: turtlesim, the relay, the simulator, the lab page, the workbench
 	@$(REFENV) cd $(ROOT) && python3 bench/turtlesim_bench.py && python3 bench/relay_bench.py \

@@ -78,3 +78,26 @@ def test_run_autograder(autograder_zip: Path, tmp_path: Path, submission: Path, 
     assert test["status"] == ("passed" if passed else "failed"), test["output"]
     if not passed:
         assert "expected a catkin package named 'chatter'" in test["output"]
+
+
+def test_another_course_goes_in_without_its_answers(tmp_path: Path) -> None:
+    """`make autograder COURSE=DIR`: the course folder is in the zip (copied under courses/ when it
+    lies outside the repository), its solution/ and samples/ are not, and course.txt names it for
+    run_autograder; no course folder's answers are in any zip."""
+    from course_grader import autograder
+    course = tmp_path / "my_course"
+    for rel in ("course.yaml", "checks/mine.test", "solution/pkg/package.xml", "samples/good/pkg/package.xml"):
+        (course / rel).parent.mkdir(parents=True, exist_ok=True)
+        (course / rel).write_text("x")
+    out = tmp_path / "autograder.zip"
+    autograder.write_zip(str(ROOT), str(out), course=str(course))
+    with zipfile.ZipFile(out) as zf:
+        names = set(zf.namelist())
+        assert {"courses/my_course/course.yaml", "courses/my_course/checks/mine.test"} <= names
+        assert zf.read("course.txt").decode().strip() == "courses/my_course"
+    assert not [n for n in names if autograder.answer(n)], "answers in the zip"
+    assert autograder.answer("courses/ros_wiki_beginner/solution/beginner_tutorials/package.xml")
+    assert autograder.answer("courses/any/samples/good/expected.json")
+    assert not autograder.answer("courses/any/course.yaml")
+    run = (ROOT / "src" / "course_grader" / "autograder" / "run_autograder").read_text()
+    assert "course.txt" in run and "--course" in run

@@ -1,6 +1,7 @@
 """Write the Gradescope autograder zip: setup.sh and run_autograder at its root (as Gradescope's
 specs require), the course repository's tracked files beside them (setup.sh builds them as the
-`make build` does (docs/setup.md)), and milestones.txt when the assignment grades only some milestones.
+`make build` does (docs/setup.md)), milestones.txt when the assignment grades only some milestones,
+and course.txt naming the course folder when it is not the built-in one (`make autograder COURSE=DIR`).
 Grading then scales past one machine: one container per submission on Gradescope's fleet."""
 from __future__ import annotations
 
@@ -18,6 +19,14 @@ ENTRY_POINTS = ("setup.sh", "run_autograder")
 # Not needed to grade: the sample submissions and build output.
 EXCLUDED_PREFIXES = ("tests/submissions/", "catkin_ws/build/", "catkin_ws/devel/", ".venv/",
                      "solutions/", "solutions_ws/")  # the reference solutions: answers, never graded there
+# A course folder's answers (docs/course_format.md).
+EXCLUDED_PATTERNS = ("courses/*/solution/*", "courses/*/samples/*")
+COURSE_NOTE = "course.txt"
+
+
+def answer(rel: str) -> bool:
+    """Whether `rel` (a path in the repository) is an answer the zip must not hold."""
+    return rel.startswith(EXCLUDED_PREFIXES) or any(fnmatch.fnmatch(rel, p) for p in EXCLUDED_PATTERNS)
 
 
 def repo_files(repo: str) -> List[str]:
@@ -31,7 +40,7 @@ def repo_files(repo: str) -> List[str]:
         found = listed.stdout.decode().split("\0")
     else:
         found = _walk_not_ignored(repo)
-    return sorted({p for p in found if p and not p.startswith(EXCLUDED_PREFIXES)})
+    return sorted({p for p in found if p and not answer(p)})
 
 
 def _walk_not_ignored(repo: str) -> List[str]:
@@ -77,7 +86,21 @@ def _add(zf: zipfile.ZipFile, path: str, name: str) -> None:
         zf.writestr(info, f.read())
 
 
-def write_zip(repo: str, out: str, milestones: Sequence[str] = (), templates: str = TEMPLATES) -> None:
+def course_files(course: str) -> List[str]:
+    """A course folder's files (relative to it) less its answers (solution/, samples/)."""
+    found = []
+    for folder, dirs, files in os.walk(course):
+        rel = os.path.relpath(folder, course)
+        if rel == ".":
+            dirs[:] = [d for d in dirs if d not in ("solution", "samples")]
+        found += [os.path.normpath(os.path.join(rel, name)) for name in files]
+    return sorted(found)
+
+
+def write_zip(repo: str, out: str, milestones: Sequence[str] = (), templates: str = TEMPLATES,
+              course: str = "") -> None:
+    """The zip of `repo` (its answers left out) with Gradescope's entry points; `course`, a course
+    folder other than the built-in one, is graded (copied in under courses/ when outside `repo`)."""
     with zipfile.ZipFile(out, "w") as zf:
         for name in ENTRY_POINTS:
             _add(zf, os.path.join(templates, name), name)
@@ -86,6 +109,14 @@ def write_zip(repo: str, out: str, milestones: Sequence[str] = (), templates: st
                 _add(zf, os.path.join(repo, rel), rel)
         if milestones:
             zf.writestr("milestones.txt", "\n".join(milestones) + "\n")
+        if course:
+            course = os.path.realpath(course)
+            inside = os.path.relpath(course, os.path.realpath(repo))
+            if inside.startswith(".."):
+                inside = "courses/%s" % os.path.basename(course)
+                for rel in course_files(course):
+                    _add(zf, os.path.join(course, rel), "%s/%s" % (inside, rel))
+            zf.writestr(COURSE_NOTE, inside + "\n")
 
 
 def main(argv: Optional[Iterable[str]] = None) -> int:
@@ -94,7 +125,8 @@ def main(argv: Optional[Iterable[str]] = None) -> int:
     parser.add_argument("--repo", default=os.path.realpath(os.path.join(TEMPLATES, "..", "..", "..")),
                         help="the course repository (default: the one this package is in)")
     parser.add_argument("--only", action="append", default=[], metavar="M", help="grade only milestone M")
+    parser.add_argument("--course", default="", metavar="DIR", help="grade this course folder (default: the built-in one)")
     opts = parser.parse_args(list(argv) if argv is not None else None)
-    write_zip(opts.repo, opts.out, opts.only)
+    write_zip(opts.repo, opts.out, opts.only, course=opts.course)
     print("wrote %s (%d files)" % (opts.out, len(zipfile.ZipFile(opts.out).namelist())))
     return 0

@@ -1,0 +1,123 @@
+"""course-lint DIR [--only M ...] [--jobs J] [--operators a,b] [--keep DIR] [--list] [--json FILE]
+
+Shows that a course's checks can fail: grades each milestone of the course in DIR (a folder with a
+course.yaml) against the course's reference solution and against mutants of it, the reference
+with one mistake each (docs/course_lint.md lists the operators). Per milestone it prints the
+mutants killed, K/N, and names the survivors: mistakes the milestone's check does not catch.
+Exit code: 1 when a reference fails its milestone, 2 when the course file has an error, else 0.
+The last line is `mutants killed K/N`.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import shutil
+import sys
+import tempfile
+from typing import Dict, List, Optional
+
+from course_milestones import course_file
+
+from course_lint.lint import MilestoneLint, Outcome, lint_milestone
+from course_lint.mutants import OPERATORS, by_names
+
+EXIT_REFERENCE_FAILS = 1
+EXIT_COURSE_ERROR = 2
+
+
+def parse(argv: Optional[List[str]]) -> argparse.Namespace:
+    parser = argparse.ArgumentParser(prog="course-lint", description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("course", metavar="DIR", help="the course folder (holding course.yaml)")
+    parser.add_argument("--only", action="append", metavar="M", help="lint only milestone M (repeatable)")
+    parser.add_argument("--jobs", "-j", type=int, default=2, help="the grader's runs at once (default 2)")
+    parser.add_argument("--operators", metavar="A,B", help="only these mutant operators (default: all, see --list)")
+    parser.add_argument("--keep", metavar="DIR", help="keep the mutants' folders and the grader's output in DIR")
+    parser.add_argument("--list", action="store_true", help="print the mutants without grading them")
+    parser.add_argument("--json", metavar="FILE", help="also write the table as JSON to FILE")
+    return parser.parse_args(argv)
+
+
+def where(outcome: Outcome) -> str:
+    m = outcome.mutant
+    return "%s/%s:%d" % (m.package, m.path, m.line) if m else ""
+
+
+def survivor(outcome: Outcome) -> str:
+    graded = "" if outcome.graded else "; not graded"
+    return "%s (%s, %s%s)" % (outcome.name, outcome.mutant.operator.description, where(outcome), graded)
+
+
+def milestone_line(result: MilestoneLint) -> str:
+    head = "%s  %s%d/%d killed" % (result.milestone.name, "REFERENCE FAILS  " if result.reference_fails else "",
+                                   len(result.killed), len(result.mutants))
+    return "%s  survivors: %s" % (head, ", ".join(survivor(o) for o in result.survivors) or "none")
+
+
+def listing(result: MilestoneLint) -> List[str]:
+    lines = ["%s  %d mutant(s)" % (result.milestone.name, len(result.mutants))]
+    lines += ["  %-18s %-40s %s" % (o.name, where(o), o.mutant.changed[:80]) for o in result.mutants]
+    return lines
+
+
+def as_json(course: course_file.Course, results: List[MilestoneLint]) -> Dict:
+    def outcome(o: Outcome) -> Dict:
+        entry = {"name": o.name, "graded": o.graded, "passed": o.passed, "reason": o.reason}
+        if o.mutant:
+            entry.update(operator=o.mutant.operator.name, description=o.mutant.operator.description,
+                         file="%s/%s" % (o.mutant.package, o.mutant.path), line=o.mutant.line,
+                         changed=o.mutant.changed, killed=o.graded and not o.passed)
+        return entry
+    return {"course": course.name, "root": course.root,
+            "milestones": [{"name": r.milestone.name, "title": r.milestone.title,
+                            "packages": list(r.milestone.packages), "reference": outcome(r.reference),
+                            "reference_fails": r.reference_fails, "killed": len(r.killed),
+                            "total": len(r.mutants), "mutants": [outcome(o) for o in r.mutants],
+                            "notes": r.notes} for r in results],
+            "killed": sum(len(r.killed) for r in results), "total": sum(len(r.mutants) for r in results)}
+
+
+def main(argv: Optional[List[str]] = None) -> int:
+    opts = parse(argv)
+    try:
+        course = course_file.load(opts.course)
+    except course_file.CourseError as err:
+        print(err, file=sys.stderr)
+        return EXIT_COURSE_ERROR
+    try:
+        operators = by_names(opts.operators.split(",")) if opts.operators else OPERATORS
+    except ValueError as err:
+        print(err, file=sys.stderr)
+        return EXIT_COURSE_ERROR
+    names = [m.name for m in course.milestones]
+    unknown = sorted(set(opts.only or []) - set(names))
+    if unknown:
+        print("%s has no milestone %s (it has: %s)" % (course.file, ", ".join(unknown), ", ".join(names)), file=sys.stderr)
+        return EXIT_COURSE_ERROR
+    work = os.path.abspath(opts.keep) if opts.keep else tempfile.mkdtemp(prefix="course-lint-")
+    results = []
+    try:
+        for milestone in course.milestones:
+            if opts.only and milestone.name not in opts.only:
+                continue
+            if not milestone.packages:
+                print("%s  not linted: it names no package (it checks the course workspace)" % milestone.name)
+                continue
+            result = lint_milestone(course, milestone, work, opts.jobs, operators, grading=not opts.list)
+            results.append(result)
+            print("\n".join(listing(result)) if opts.list else milestone_line(result), flush=True)
+            if result.reference_fails and not opts.list:
+                print("  the reference fails %s: %s" % (milestone.name, result.reference.reason), flush=True)
+            for note in result.notes:
+                print("  note: %s" % note)
+    finally:
+        if not opts.keep:
+            shutil.rmtree(work, ignore_errors=True)
+    if opts.json:
+        with open(opts.json, "w") as f:
+            json.dump(as_json(course, results), f, indent=2)
+    total = sum(len(r.mutants) for r in results)
+    print("mutants listed %d" % total if opts.list else
+          "mutants killed %d/%d" % (sum(len(r.killed) for r in results), total))
+    return EXIT_REFERENCE_FAILS if any(r.reference_fails for r in results) and not opts.list else 0

@@ -96,6 +96,8 @@ def main(argv: Optional[List[str]] = None) -> int:
         print("%s has no milestone %s (it has: %s)" % (course.file, ", ".join(unknown), ", ".join(names)), file=sys.stderr)
         return EXIT_COURSE_ERROR
     work = os.path.abspath(opts.keep) if opts.keep else tempfile.mkdtemp(prefix="course-lint-")
+    if not opts.keep:
+        os.chmod(work, 0o755)  # the grader's sandbox user reads the mutants and writes below
     results = []
     try:
         for milestone in course.milestones:

@@ -143,7 +143,8 @@ def lint_milestone(course: Course, milestone: Milestone, work: str, jobs: int,
     folders = reference_packages(course.solution)
     missing = [p for p in milestone.packages if p not in folders]
     if missing:
-        why = "the reference solution (%s) holds no package %s" % (course.solution, ", ".join(missing))
+        why = ("the reference solution (%s) holds no package %s" % (course.solution, ", ".join(missing))
+               if course.solution else "the course has no reference solution folder (course.yaml's solution)")
         return MilestoneLint(milestone, Outcome(REFERENCE, None, False, False, why), [], [])
     mutants, notes = milestone_mutants(milestone, folders, operators)
     if not grading:

@@ -83,6 +83,16 @@ def cpp_swap_xy(text: str) -> List[str]:
     return found
 
 
+def without(text: str, start: int, end: int) -> str:
+    """The text less [start, end) and the blanks before it; less its whole line when alone on it."""
+    line_start = text.rfind("\n", 0, start) + 1
+    line_end = text.find("\n", end)
+    line_end = len(text) if line_end < 0 else line_end
+    if not text[line_start:start].strip() and not text[end:line_end].strip() and line_end < len(text):
+        return text[:line_start] + text[line_end + 1:]
+    return text[:start].rstrip(" \t") + text[end:]
+
+
 def msg_left_out(text: str) -> List[str]:
     """One interface file left out of an add_message/service/action_files FILES list."""
     found = []
@@ -93,10 +103,7 @@ def msg_left_out(text: str) -> List[str]:
             if word.upper() in CMAKE_KEYWORDS:
                 in_files = word.upper() == "FILES"
             elif in_files and not word.startswith("#"):
-                start = call.start(1) + token.start()
-                end = call.start(1) + token.end()
-                lead = len(text[:start]) - len(text[:start].rstrip(" \t"))
-                found.append(text[:start - lead] + text[end:])
+                found.append(without(text, call.start(1) + token.start(), call.start(1) + token.end()))
     return found
 
 

@@ -1,0 +1,58 @@
+"""`course-lint` on real courses: the built-in course's chatter milestone kills mutants of its
+reference, a course whose reference fails its milestone makes it exit 1, and a course file with
+an error exit 2 (docs/course_lint.md). Each grading is a real grader run (catkin builds and
+rostests), so the operators are limited to a few."""
+from __future__ import annotations
+
+import re
+import shutil
+import subprocess
+from pathlib import Path
+from typing import List
+
+ROOT = Path(__file__).resolve().parents[1]
+BUILTIN = ROOT / "courses" / "robotics_labs"
+LAST_LINE = re.compile(r"^mutants killed (\d+)/(\d+)$")
+
+
+def course_lint(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run(["rosrun", "course_lint", "course-lint"] + list(args), stdout=subprocess.PIPE,
+                          stderr=subprocess.PIPE, stdin=subprocess.DEVNULL, text=True, timeout=300, check=False)
+
+
+def lines(done: subprocess.CompletedProcess) -> List[str]:
+    return done.stdout.strip().splitlines()
+
+
+def test_chatter_reference_passes_and_mutants_are_killed():
+    done = course_lint(str(BUILTIN), "--only", "chatter", "--operators", "topic_renamed,exit_after_one,no_spin,publish_removed")
+    assert done.returncode == 0, done.stdout + done.stderr
+    last = LAST_LINE.match(lines(done)[-1])
+    assert last, lines(done)
+    killed, total = int(last.group(1)), int(last.group(2))
+    assert killed >= 3 and total == 5, done.stdout
+    assert lines(done)[0].startswith("chatter  %d/%d killed  survivors: " % (killed, total)), done.stdout
+    assert "REFERENCE FAILS" not in done.stdout
+
+
+def test_a_reference_that_fails_its_milestone_exits_1(tmp_path: Path):
+    course = tmp_path / "course"
+    course.mkdir()
+    text = (BUILTIN / "course.yaml").read_text()
+    text = re.sub(r"(?m)^solution: .*$", "solution: solution", text)
+    (course / "course.yaml").write_text(re.sub(r"(?m)^samples: .*\n", "", text))
+    shutil.copytree(str(ROOT / "solutions" / "chatter"), str(course / "solution" / "chatter"), symlinks=True)
+    pub = course / "solution" / "chatter" / "src" / "example_pub.py"
+    pub.write_text(pub.read_text().replace('"chatter_talk"', '"chatter_elsewhere"'))
+    done = course_lint(str(course), "--only", "chatter", "--operators", "no_spin")
+    assert done.returncode == 1, done.stdout + done.stderr
+    assert lines(done)[0].startswith("chatter  REFERENCE FAILS  "), done.stdout
+    assert "the reference fails chatter: " in done.stdout and "/chatter_talk" in done.stdout
+    assert LAST_LINE.match(lines(done)[-1]), done.stdout
+
+
+def test_a_course_file_error_exits_2_and_says_where(tmp_path: Path):
+    (tmp_path / "course.yaml").write_text("name: broken\ntitle: Broken\nmilestones:\n  - id: Bad Id\n")
+    done = course_lint(str(tmp_path))
+    assert done.returncode == 2, done.stdout + done.stderr
+    assert "course.yaml:4: milestones[0]" in done.stderr and "Traceback" not in done.stderr

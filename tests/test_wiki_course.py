@@ -1,0 +1,121 @@
+"""The second course, courses/ros_wiki_beginner (the ROS wiki's beginner tutorials), graded as a TA
+would: one `rosrun course_grader grade --course courses/ros_wiki_beginner` run over every sample
+(each graded on the milestones its expected.json names) and over the course's reference solution
+(graded as a submission: every milestone, each must pass). Each verdict and reason is compared
+with the sample's expected.json as tests/test_grader_samples.py does for the built-in course (its
+helpers, imported). Without a grader run: every milestone has a correct and a buggy sample, and
+every Python node of the course is executable in git.
+
+The grading starts as soon as the session knows these tests will run (start_early, called by the
+root conftest.py), so it overlaps the rest of a suite; the first test that needs it waits.
+"""
+from __future__ import annotations
+
+import importlib.util
+import json
+import subprocess
+import tempfile
+from pathlib import Path
+from typing import Dict, List, Tuple
+
+import pytest
+import yaml
+
+from course_checks.nodes import NodeProcess
+from course_testkit.gradings import processes_of
+
+ROOT = Path(__file__).resolve().parents[1]
+COURSE = ROOT / "courses" / "ros_wiki_beginner"
+SAMPLES = sorted(p.parent for p in (COURSE / "samples").glob("*/expected.json"))
+SOLUTION = COURSE / "solution"
+MILESTONES = [m["id"] for m in yaml.safe_load((COURSE / "course.yaml").read_text())["milestones"]]
+JOBS = 2
+GRADER_TIMEOUT_S = 1800
+
+
+def _sibling(name: str):
+    """A module of this folder (the suite imports test files by path: tests/ is not a package)."""
+    spec = importlib.util.spec_from_file_location("_wiki_course_" + name, Path(__file__).with_name(name + ".py"))
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+_samples = _sibling("test_grader_samples")  # a private copy of the module: changed here, not in its own tests
+checkout_state = _samples.checkout_state
+# Its test_verdict judges only the samples its SAMPLES lists (by their path under tests/submissions,
+# the others being left out where the sandbox cannot isolate attacks): this course's, in this copy.
+_samples.SAMPLES = [_samples.ROOT / "tests" / "submissions" / s.name for s in SAMPLES + [SOLUTION]]
+
+
+class WikiGrading(_samples.SampleGrading):
+    """The grader over every sample and the solution, in the background (output to a file); waited
+    for and stopped as the built-in samples' grading is."""
+
+    def __init__(self) -> None:  # pylint: disable=super-init-not-called (the built-in samples' set-up)
+        self.folder = Path(tempfile.mkdtemp(prefix="grader-wiki-"))
+        self.folder.chmod(0o755)  # the sandbox user passes through it to each student's workspace
+        self.out = self.folder / "grades"
+        self.checkout_before = checkout_state()
+        self.grader = NodeProcess(["rosrun", "course_grader", "grade", "--course", str(COURSE),
+                                   "--only-from", "expected.json", "--jobs", str(JOBS), "--out", str(self.out)]
+                                  + [str(s) for s in SAMPLES] + [str(SOLUTION)],
+                                  stdin=subprocess.DEVNULL, log_path=str(self.folder / "grade.log"))
+
+
+GRADING = pytest.StashKey[WikiGrading]()
+
+
+def start_early(config: pytest.Config) -> None:
+    grading = WikiGrading()
+    config.stash[GRADING] = grading
+    config.add_cleanup(grading.stop)
+
+
+def expectations() -> List[Tuple[str, str, Dict]]:
+    found = [(s.name, m, e) for s in SAMPLES for m, e in json.loads((s / "expected.json").read_text()).items()]
+    return found + [(SOLUTION.name, m, {"passed": True}) for m in MILESTONES]
+
+
+@pytest.fixture(scope="module")
+def graded(request: pytest.FixtureRequest) -> Path:
+    if GRADING not in request.config.stash:  # this module was not known to be selected at collection
+        start_early(request.config)
+    grading = request.config.stash[GRADING]
+    returncode, output = grading.finished(GRADER_TIMEOUT_S)
+    assert returncode == 0, "the grader %s:\n%s" % (
+        "exited with %s" % returncode if returncode is not None else "ran out of time", output[-5000:])
+    print(output)
+    return grading.out
+
+
+@pytest.mark.parametrize("sample,milestone,expected", expectations(), ids=lambda v: v if isinstance(v, str) else "")
+def test_verdict(graded: Path, sample: str, milestone: str, expected: Dict) -> None:
+    """The verdict, its reason and its cause as expected: test_grader_samples' own comparison."""
+    _samples.test_verdict(graded, sample, milestone, expected)
+
+
+def test_nothing_left_running(graded: Path) -> None:
+    left = processes_of(str(graded))
+    assert not left, "processes left running after grading:\n" + "\n".join(left)
+
+
+def test_the_course_checkout_is_unchanged(request: pytest.FixtureRequest, graded: Path) -> None:
+    assert checkout_state() == request.config.stash[GRADING].checkout_before, "the grading changed the checkout"
+
+
+def test_every_milestone_has_a_correct_and_a_buggy_sample() -> None:
+    verdicts: Dict[str, set] = {m: set() for m in MILESTONES}
+    for sample, milestone, expected in expectations():
+        if sample != SOLUTION.name:
+            assert milestone in verdicts, "%s names %s, not a milestone of %s" % (sample, milestone, MILESTONES)
+            verdicts[milestone].add(bool(expected["passed"]))
+    assert {m: v for m, v in verdicts.items() if v != {True, False}} == {}
+
+
+def test_the_python_nodes_are_executable_in_git() -> None:
+    """A node without its executable bit in git is not found by rosrun once checked out."""
+    listed = subprocess.run(["git", "-C", str(ROOT), "ls-files", "-s", "--", str(COURSE)], stdout=subprocess.PIPE,
+                            text=True, check=True).stdout.splitlines()
+    scripts = [line.split("\t", 1) for line in listed if line.endswith(".py")]
+    assert scripts and [path for mode, path in scripts if not mode.startswith("100755")] == []

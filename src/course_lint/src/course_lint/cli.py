@@ -1,4 +1,4 @@
-"""course-lint DIR [--only M ...] [--jobs J] [--operators a,b] [--keep DIR] [--list] [--json FILE]
+"""course-lint DIR [--only M ...] [--jobs J] [--operators a,b] [--mutmut] [--keep DIR] [--list] [--json FILE]
 
 Shows that a course's checks can fail: grades each milestone of the course in DIR (a folder with a
 course.yaml) against the course's reference solution and against mutants of it, the reference
@@ -19,6 +19,7 @@ from typing import Dict, List, Optional
 
 from course_milestones import course_file
 
+from course_lint import generic
 from course_lint.lint import MilestoneLint, Outcome, lint_milestone
 from course_lint.mutants import OPERATORS, by_names
 
@@ -34,6 +35,8 @@ def parse(argv: Optional[List[str]]) -> argparse.Namespace:
     parser.add_argument("--jobs", "-j", type=int, default=2, help="the grader's runs at once (default 2)")
     parser.add_argument("--operators", metavar="A,B", help="only these mutant operators (default: all, see --list)")
     parser.add_argument("--keep", metavar="DIR", help="keep the mutants' folders and the grader's output in DIR")
+    parser.add_argument("--mutmut", action="store_true",
+                        help='also generic Python mutants from mutmut 2 (pip install "mutmut<3")')
     parser.add_argument("--list", action="store_true", help="print the mutants without grading them")
     parser.add_argument("--json", metavar="FILE", help="also write the table as JSON to FILE")
     return parser.parse_args(argv)
@@ -87,7 +90,8 @@ def main(argv: Optional[List[str]] = None) -> int:
         return EXIT_COURSE_ERROR
     try:
         operators = by_names(opts.operators.split(",")) if opts.operators else OPERATORS
-    except ValueError as err:
+        operators += (generic.operator(),) if opts.mutmut else ()
+    except (ValueError, generic.Unavailable) as err:
         print(err, file=sys.stderr)
         return EXIT_COURSE_ERROR
     names = [m.name for m in course.milestones]

@@ -19,7 +19,7 @@ from catkin_pkg.packages import find_packages
 from course_milestones.course_file import Course
 from course_milestones.milestone import Milestone
 
-from course_lint.mutants import OPERATORS, Mutant, Operator, package_mutants
+from course_lint.mutants import Mutant, Operator, package_mutants
 
 REFERENCE = "reference"
 GRADE = ["rosrun", "course_grader", "grade"]
@@ -78,7 +78,7 @@ def milestone_mutants(milestone: Milestone, folders: Dict[str, str], operators: 
             mine, why = package_mutants(folders[package], operators)
             found += mine
             notes += why
-    order = {op.name: i for i, op in enumerate(OPERATORS)}
+    order = {op.name: i for i, op in enumerate(operators)}
     return numbered(sorted(found, key=lambda m: order[m.operator.name])), notes
 
 

@@ -43,9 +43,9 @@ class Mutant(NamedTuple):
 
 
 OPERATORS: Tuple[Operator, ...] = (
-    Operator("topic_renamed", "a topic, service or action name renamed (a remap's target in a launch file)",
+    Operator("topic_renamed", "a topic, service or action name renamed; in a launch file, a remap's target",
              {PYTHON: py.topic_renamed, CPP: tx.cpp_topic_renamed, LAUNCH: tx.remap_renamed}),
-    Operator("type_changed", "a publisher's or subscriber's message type changed (std_msgs Empty or String)",
+    Operator("type_changed", "a publisher's or subscriber's message type changed to std_msgs Empty or String",
              {PYTHON: py.type_changed}),
     Operator("exit_after_one", "the node exits right after its first message from this publish",
              {PYTHON: py.exit_after_one, CPP: tx.cpp_exit_after_one}),
@@ -54,10 +54,10 @@ OPERATORS: Tuple[Operator, ...] = (
              {PYTHON: py.no_spin, CPP: tx.cpp_no_spin}),
     Operator("rate_div10", "a loop rate divided by ten", {PYTHON: py.rate_div10, CPP: tx.cpp_rate_div10}),
     Operator("swap_xy", "x and y swapped on one line", {PYTHON: py.swap_xy, CPP: tx.cpp_swap_xy}),
-    Operator("pen_off", "the pen colour off (r, g, b each 255 minus itself)", {PYTHON: py.pen_off}),
+    Operator("pen_off", "the pen colour off: r, g, b each 255 minus itself", {PYTHON: py.pen_off}),
     Operator("param_ignored", "a parameter ignored: get_param's default used instead", {PYTHON: py.param_ignored}),
     Operator("param_changed", "a launch file's <param> value changed", {LAUNCH: tx.param_changed}),
-    Operator("service_wrong", "a service answers wrong (its response's values left empty)", {PYTHON: py.service_wrong}),
+    Operator("service_wrong", "a service answers wrong: its response's values left empty", {PYTHON: py.service_wrong}),
     Operator("msg_left_out", "a message, service or action file left out of the build",
              {CMAKE: tx.msg_left_out}),
 )

@@ -1,0 +1,74 @@
+"""The runtime of a data milestone: each primitive of steps.schema mapped to the function that does
+it (one module per kind of thing it looks at), and the steps run in order until the first that
+fails. The generic check node (course_milestones' `course_check`) calls `run_steps`.
+
+Every primitive takes (state, params, where): the milestone's shared StepState, the step's
+parameters with the schema's defaults filled in, and the step's place in the course file. A
+failure is a StepFailed whose finding carries its cause; anything else a primitive raises is the
+check's own fault, said as such (cause grader_error), never a bare traceback.
+"""
+from __future__ import annotations
+
+from typing import Callable, Dict, Optional, Sequence
+
+from course_milestones import causes
+from course_milestones.steps import built, frames, params, schema, services, starting, terminal, topics, turtles
+from course_milestones.steps.state import StepFailed, StepState, course_error
+
+Primitive = Callable[[StepState, Dict, str], None]
+
+RUNNERS: Dict[str, Primitive] = {
+    "start": starting.start,
+    "publishes": topics.publishes,
+    "subscribes": topics.subscribes,
+    "advertises": services.advertises,
+    "call": services.call,
+    "publish": topics.publish,
+    "set_param": params.set_param,
+    "param_is": params.param_is,
+    "prints": terminal.prints,
+    "type": terminal.type_keys,
+    "teleport": turtles.teleport,
+    "turtle_moves": turtles.turtle_moves,
+    "running": starting.running,
+    "generated": built.generated,
+    "tf_frame": frames.tf_frame,
+    "tf_follows": frames.tf_follows,
+}
+
+
+def new_state(packages: Sequence[str] = (), package: str = "") -> StepState:
+    """The state a milestone's steps share; every turtle's pose is watched from each action on.
+    `package`: the package holding the student's code when it is not `packages[0]` (a rostest's
+    ~pkg), which then stands for it in the steps' commands."""
+    renamed = {packages[0]: package} if packages and package and package != packages[0] else {}
+    return StepState(tuple(packages) + tuple(renamed.values()), on_action=(turtles.watch_all,), renamed=renamed)
+
+
+def with_defaults(primitive: str, given: Dict) -> Dict:
+    """The step's parameters, each missing one at the schema's default (the loader does it too)."""
+    return {**{p.name: p.default for p in schema.PRIMITIVES[primitive].params}, **dict(given or {})}
+
+
+def run_step(state: StepState, primitive: str, given: Dict, where: str) -> Optional[str]:
+    """Run one step; its failure's finding (a causes.Finding), or None when it passed."""
+    if primitive not in RUNNERS:
+        return course_error(where, "unknown primitive %r (known: %s)" % (primitive, ", ".join(RUNNERS))).finding
+    try:
+        RUNNERS[primitive](state, with_defaults(primitive, given), where)
+    except StepFailed as failure:
+        return failure.finding
+    except Exception as err:  # noqa: BLE001 - the check's own fault: said, with the step, not as a traceback
+        return causes.finding("grader_error", "the check failed on the step at %s (%s): %s: %s" % (
+            where, primitive, type(err).__name__, err))
+    return None
+
+
+def run_steps(state: StepState, steps: Sequence) -> Optional[str]:
+    """Run `steps` (each with .primitive, .params, .where) in order; the first failure's finding,
+    or None when every step passed."""
+    for step in steps:
+        finding = run_step(state, step.primitive, step.params, step.where)
+        if finding is not None:
+            return finding
+    return None

@@ -1,0 +1,321 @@
+"""The generic check node `course_check` running data milestones (course_milestones.steps) against
+the reference packages built in solutions_ws: each primitive passes on a correct step list, and
+fails on a wrong one with the cause it records (causes.json in the milestone's artifacts folder)
+and a reason that says what was seen.
+
+One course file holds every milestone; each rostest run holds several of them, one <test> each,
+in sequence on one master (a milestone ends at its first failing step, so each failure is a
+milestone of its own), with an artifacts folder per test. The runs go at once, on threads.
+"""
+from __future__ import annotations
+
+import glob
+import os
+import re
+from concurrent.futures import Future, ThreadPoolExecutor
+from typing import Dict, Iterator, Optional, Tuple
+from xml.sax.saxutils import quoteattr
+
+import pytest
+import rospkg
+
+from course_checks import junit
+from course_checks.rostest_runner import RostestResult, run_rostest
+from course_milestones import causes, course_file
+from course_milestones.steps import schema
+
+TIMEOUT_S = 150
+
+COURSE = r"""
+name: steps_test
+title: The primitives of a data milestone, against the reference solutions
+milestones:
+  # -- chatter: example_pub.py publishes /chatter_talk at 10 Hz, example_sub.py prints what it hears
+  - id: chatter_ok
+    title: start (find), publishes, subscribes, prints
+    text: test
+    packages: [chatter]
+    steps:
+      - start: {rosrun: chatter talker.py, find: {publishes: /chatter_talk}, as: talker}
+      - publishes: {topic: /chatter_talk, type: std_msgs/String, node: talker, min_rate: 5, max_rate: 15, count: 3,
+                    fields: {data: {matches: "^hello world [0-9.]+$", nonempty: true}}}
+      - start: {rosrun: chatter example_sub.py, as: listener}
+      - subscribes: {topic: /chatter_talk, node: listener}
+      - prints: {node: listener, pattern: "I heard hello world"}
+  - id: chatter_wrong_topic
+    title: publishes on another topic
+    text: test
+    packages: [chatter]
+    steps:
+      - start: {rosrun: chatter example_pub.py, find: {publishes: /chatter_talk}}
+      - publishes: {topic: /chatter, within: 3}
+  - id: chatter_wrong_type
+    title: publishes another type
+    text: test
+    packages: [chatter]
+    steps:
+      - start: {rosrun: chatter example_pub.py}
+      - publishes: {topic: /chatter_talk, type: std_msgs/Int32}
+  - id: chatter_wrong_rate
+    title: an impossible rate
+    text: test
+    packages: [chatter]
+    steps:
+      - start: {rosrun: chatter example_pub.py}
+      - publishes: {topic: /chatter_talk, min_rate: 1000, within: 5}
+  - id: chatter_wrong_value
+    title: a field predicate that cannot hold
+    text: test
+    packages: [chatter]
+    steps:
+      - start: {rosrun: chatter example_pub.py}
+      - publishes: {topic: /chatter_talk, fields: {data: {matches: "^goodbye"}}}
+  - id: chatter_not_subscribed
+    title: a publisher subscribes to nothing
+    text: test
+    packages: [chatter]
+    steps:
+      - start: {rosrun: chatter example_pub.py}
+      - subscribes: {topic: /chatter_talk, within: 2}
+  - id: chatter_not_printed
+    title: a pattern that never appears
+    text: test
+    packages: [chatter]
+    steps:
+      - start: {rosrun: chatter example_sub.py}
+      - prints: {pattern: "never said", within: 2}
+  - id: chatter_not_started
+    title: a script that is not there
+    text: test
+    packages: [chatter]
+    steps:
+      - start: {rosrun: chatter no_such_script.py}
+  - id: chatter_course_error
+    title: a type that does not exist
+    text: test
+    packages: [chatter]
+    steps:
+      - start: {rosrun: chatter example_pub.py}
+      - publishes: {topic: /chatter_talk, type: std_msgs/NoSuchType}
+  - id: publish_course_error
+    title: a message that does not fit its type
+    text: test
+    packages: [chatter]
+    steps:
+      - publish: {topic: /words, type: std_msgs/String, message: {no_such_field: 1}}
+
+  # -- pkg_param: param_demo's node /param_declare says Hello <~robot_name> every 2 s
+  - id: param_ok
+    title: running, prints, param_is, set_param
+    text: test
+    packages: [pkg_param]
+    steps:
+      - start: {rosrun: pkg_param param_demo}
+      - running: {nodes: [/param_declare]}
+      - prints: {pattern: "Hello muto"}
+      - param_is: {name: /param_declare/robot_name, expect: {equals: muto}}
+      - set_param: {name: /param_declare/robot_name, value: robot}
+      - prints: {node: param_demo, pattern: "^.*Hello robot"}
+      - param_is: {name: /param_declare/robot_name, expect: {matches: "^rob"}}
+  - id: param_wrong_value
+    title: a parameter with another value
+    text: test
+    packages: [pkg_param]
+    steps:
+      - start: {rosrun: pkg_param param_demo}
+      - param_is: {name: /param_declare/robot_name, expect: {equals: robot}, within: 2}
+  - id: not_running
+    title: a node that is not there
+    text: test
+    packages: [pkg_param]
+    steps:
+      - running: {nodes: [/nobody], within: 1}
+
+  # -- pkg_interfaces: Person.msg, Add.srv, Progress.action; add_server offers /add_two_ints
+  - id: services_ok
+    title: generated, start (find advertises), advertises, call
+    text: test
+    packages: [pkg_interfaces]
+    steps:
+      - generated: {messages: [pkg_interfaces/Person], services: [pkg_interfaces/Add], actions: [pkg_interfaces/Progress]}
+      - start: {rosrun: pkg_interfaces add_server, find: {advertises: /add_two_ints}, as: server}
+      - advertises: {service: /add_two_ints, type: pkg_interfaces/Add, node: server}
+      - call: {service: /add_two_ints, request: {num1: 2, num2: 40}, expect: {sum: {equals: 42}}}
+  - id: wrong_answer
+    title: an answer the text does not give
+    text: test
+    packages: [pkg_interfaces]
+    steps:
+      - start: {rosrun: pkg_interfaces add_server, find: {advertises: /add_two_ints}}
+      - call: {service: /add_two_ints, request: {num1: 2, num2: 40}, expect: {sum: {equals: 41}}}
+  - id: service_exception
+    title: a server that raises
+    text: test
+    packages: [pkg_interfaces]
+    steps:
+      - start: {rosrun: pkg_interfaces add_server, find: {advertises: /add_two_ints}}
+      - call: {service: /add_two_ints, request: {num1: 2147483647, num2: 1}}
+  - id: no_service
+    title: a service that is not offered
+    text: test
+    packages: [pkg_interfaces]
+    steps:
+      - start: {rosrun: pkg_interfaces add_server, find: {advertises: /add_two_ints}}
+      - advertises: {service: /add_three_ints, within: 2}
+  - id: not_generated
+    title: a message the package does not define
+    text: test
+    packages: [pkg_interfaces]
+    steps:
+      - generated: {messages: [pkg_interfaces/Person, pkg_interfaces/Nope]}
+
+  # -- my_robot_controller on the course's turtlesim: pose_subscriber logs turtle1's X and Y
+  - id: turtle_ok
+    title: teleport, prints, publishes (the simulator's), publish, turtle_moves
+    text: test
+    packages: [my_robot_controller]
+    world: [turtlesim]
+    steps:
+      - start: {rosrun: my_robot_controller pose_subscriber, find: {subscribes: /turtle1/pose}}
+      - subscribes: {topic: /turtle1/pose}
+      - teleport: {x: 2.3, y: 8.7}
+      - prints: {pattern: "X: 2.30, Y: 8.70"}
+      - publishes: {topic: /turtle1/pose, type: turtlesim/Pose, node: /turtlesim, fields: {x: {approx: 2.3, tolerance: 0.01}}}
+      - publish: {topic: /turtle1/cmd_vel, type: geometry_msgs/Twist, message: {linear: {x: 2.0}}, duration: 1}
+      - turtle_moves: {direction: forward, min_distance: 0.5}
+      - publish: {topic: /turtle1/cmd_vel, type: geometry_msgs/Twist, message: {angular: {z: 2.0}}, duration: 1}
+      - turtle_moves: {direction: left, min_distance: 0.5}
+  - id: turtle_not_moving
+    title: a turtle nothing drives
+    text: test
+    packages: [my_robot_controller]
+    world: [turtlesim]
+    steps:
+      - teleport: {x: 5, y: 5}
+      - turtle_moves: {within: 1}
+  - id: turtle_wrong_direction
+    title: forward is not backward
+    text: test
+    packages: [my_robot_controller]
+    world: [turtlesim]
+    steps:
+      - teleport: {x: 5, y: 5}
+      - publish: {topic: /turtle1/cmd_vel, type: geometry_msgs/Twist, message: {linear: {x: 2.0}}, duration: 1}
+      - turtle_moves: {direction: backward, within: 1}
+"""
+
+# Which milestones each rostest run holds (in order), and the world it starts.
+RUNS = {
+    "chatter": ((), ("chatter_ok", "chatter_wrong_topic", "chatter_wrong_type", "chatter_wrong_rate",
+                     "chatter_wrong_value", "chatter_not_subscribed", "chatter_not_printed", "chatter_not_started",
+                     "chatter_course_error", "publish_course_error")),
+    "params_services": ((), ("param_ok", "param_wrong_value", "not_running", "services_ok", "wrong_answer",
+                             "service_exception", "no_service", "not_generated")),
+    "turtle": (("turtlesim",), ("turtle_ok", "turtle_not_moving", "turtle_wrong_direction")),
+}
+# milestone -> None (passes) or (the cause it records, a regular expression its reason matches)
+EXPECTED: Dict[str, Optional[Tuple[str, str]]] = {
+    "chatter_ok": None,
+    "chatter_wrong_topic": ("wrong_topic", r"node /talker_\S+ publishes /chatter_talk, not /chatter"),
+    "chatter_wrong_type": ("wrong_type", r"publishes /chatter_talk of type std_msgs/String; the text's type is "
+                                         r"std_msgs/Int32"),
+    "chatter_wrong_rate": ("wrong_rate", r"publishes at (9|10|11)\.?\d* Hz; the text asks for at least 1000 Hz"),
+    "chatter_wrong_value": ("wrong_value", r"message 1 of .* data is 'hello world [0-9.]+', expected it to match "
+                                           r"'\^goodbye' \(the message: \{data: 'hello world"),
+    "chatter_not_subscribed": ("not_subscribed", r"subscribes nothing: no subscriber on /chatter_talk"),
+    "chatter_not_printed": ("not_printed", r"`rosrun chatter example_sub.py` printed no line matching 'never said'"),
+    "chatter_not_started": ("not_started", r"package chatter has no executable no_such_script.py \(found: "
+                                           r"example_pub.py, example_sub.py\)"),
+    "chatter_course_error": ("check_failed", r"^course file error at .*course.yaml:\d+ .*std_msgs/NoSuchType"),
+    "publish_course_error": ("check_failed", r"^course file error at .*no_such_field"),
+    "param_ok": None,
+    "param_wrong_value": ("wrong_value", r"parameter /param_declare/robot_name is 'muto', expected 'robot'"),
+    "not_running": ("not_running", r"no node named /nobody is running \(running: none\)"),
+    "services_ok": None,
+    "wrong_answer": ("wrong_answer", r"/add_two_ints answered \{sum: 42\} to \{num1: 2, num2: 40\}: sum is 42, "
+                                     r"expected 41"),
+    "service_exception": ("wrong_answer", r"calling /add_two_ints with .* failed: .*does not fit in int32"),
+    "no_service": ("no_service", r"offers no service /add_three_ints \(it offers /add_two_ints\)"),
+    "not_generated": ("not_generated", r"pkg_interfaces/msg/Nope.msg is not generated"),
+    "turtle_ok": None,
+    "turtle_not_moving": ("not_moving", r"turtle1 after the last action: it moved 0.00 m"),
+    "turtle_wrong_direction": ("not_moving", r"moved [1-5]\.\d+ m \([1-5]\.\d+ m along its heading\).*move 0.2 m "
+                                             r"backward"),
+}
+
+
+def launch_xml(course_yaml: str, world, milestones, artifacts: str) -> str:
+    """A rostest with `world`'s trusted nodes and one course_check per milestone, each with its own
+    artifacts folder (what the grader's rostest, course_file.test_launch, holds for one)."""
+    lines = ['<?xml version="1.0"?>', "<launch>"]
+    for name in world:
+        package, kind = schema.WORLDS[name]
+        lines.append("  <node pkg=%s type=%s name=%s/>" % (quoteattr(package), quoteattr(kind), quoteattr(name)))
+    for name in milestones:
+        lines += ['  <test test-name=%s name=%s pkg="course_milestones" type="course_check" time-limit="60">' % (quoteattr(name), quoteattr(name)),
+                  "    <param name=\"course_file\" value=%s/>" % quoteattr(course_yaml),
+                  "    <param name=\"milestone\" value=%s/>" % quoteattr(name),
+                  "    <env name=\"COURSE_ARTIFACTS_DIR\" value=%s/>" % quoteattr(os.path.join(artifacts, name)),
+                  "  </test>"]
+    return "\n".join(lines + ["</launch>", ""])
+
+
+class Outcome:
+    """One milestone's result in a run: whether it passed, its reason, the causes it recorded."""
+
+    def __init__(self, run: RostestResult, artifacts: str, name: str) -> None:
+        files = glob.glob(os.path.join(run.results_dir, "ros_home", "test_results", "*", "rosunit-%s.xml" % name))
+        suite = junit.parse_file(files[0]) if files else None
+        self.ran = suite is not None and len(suite.cases) >= 1
+        self.reasons = [c.message for c in suite.failed] if suite is not None else []
+        self.passed = self.ran and not self.reasons
+        self.causes = causes.recorded(os.path.join(artifacts, name))
+        self.output = run.output
+
+
+@pytest.fixture(scope="module")
+def outcomes(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Dict[str, Outcome]]:
+    folder = tmp_path_factory.mktemp("course_steps")
+    course_yaml = folder / "course.yaml"
+    course_yaml.write_text(COURSE)
+    course_file.load(str(course_yaml))  # the course file itself is right: every failure below is a step's
+    futures: Dict[str, Tuple[Future, str]] = {}
+    with ThreadPoolExecutor(max_workers=len(RUNS)) as pool:
+        for run, (world, milestones) in RUNS.items():
+            artifacts = str(folder / ("artifacts-" + run))
+            test_file = folder / ("%s.test" % run)
+            test_file.write_text(launch_xml(str(course_yaml), world, milestones, artifacts))
+            # a rostest file outside any package: rostest is told the package its results go under
+            args = ["--package=course_milestones", "--pkgdir=" + rospkg.RosPack().get_path("course_milestones"),
+                    "--results-filename=%s.xml" % run]
+            futures[run] = (pool.submit(run_rostest, "", str(test_file), args, results_dir=str(folder / ("run-" + run)),
+                                        timeout=TIMEOUT_S), artifacts)
+        found = {}
+        for run, (future, artifacts) in futures.items():
+            result = future.result()
+            for name in RUNS[run][1]:
+                found[name] = Outcome(result, artifacts, name)
+        yield found
+
+
+def test_every_milestone_here_is_run_and_expected():
+    listed = [name for _, names in RUNS.values() for name in names]
+    assert sorted(listed) == sorted(EXPECTED) and len(set(listed)) == len(listed)
+
+
+@pytest.mark.parametrize("name", sorted(n for n, e in EXPECTED.items() if e is None))
+def test_a_correct_step_list_passes(name: str, outcomes: Dict[str, Outcome]) -> None:
+    outcome = outcomes[name]
+    assert outcome.passed, "%s: ran %s, failed with %s\n--- rostest output (end) ---\n%s" % (
+        name, outcome.ran, outcome.reasons, outcome.output[-3000:])
+    assert outcome.causes == []
+
+
+@pytest.mark.parametrize("name", sorted(n for n, e in EXPECTED.items() if e is not None))
+def test_a_wrong_step_list_fails_with_its_cause_and_reason(name: str, outcomes: Dict[str, Outcome]) -> None:
+    outcome = outcomes[name]
+    cause, reason = EXPECTED[name]
+    assert outcome.ran and outcome.reasons, "%s did not fail\n%s" % (name, outcome.output[-3000:])
+    assert outcome.causes == [cause], "%s: %s (%s)" % (name, outcome.causes, outcome.reasons)
+    assert re.search(reason, outcome.reasons[0]), "%s's reason: %s" % (name, outcome.reasons[0])
+    assert "Traceback" not in outcome.reasons[0]

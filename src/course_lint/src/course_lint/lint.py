@@ -13,7 +13,7 @@ import os
 import shutil
 import subprocess
 import sys
-from typing import Dict, List, NamedTuple, Optional, Sequence, Tuple
+from typing import Dict, List, NamedTuple, Optional, Sequence, Set, Tuple
 
 from catkin_pkg.packages import find_packages
 from course_milestones.course_file import Course
@@ -24,6 +24,7 @@ from course_lint.mutants import Mutant, Operator, package_mutants
 REFERENCE = "reference"
 GRADE = ["rosrun", "course_grader", "grade"]
 LOG_TAIL_LINES = 20
+STARTS = ("rosrun", "roslaunch")  # a start step's parameters naming what it starts
 
 
 class Outcome(NamedTuple):
@@ -70,12 +71,24 @@ def numbered(mutants: Sequence[Mutant]) -> List[Tuple[str, Mutant]]:
     return named
 
 
+def step_names(milestone: Milestone) -> Set[str]:
+    """What a data milestone's steps start: the script, executable or launch file of each
+    `rosrun: PKG NAME` and `roslaunch: PKG FILE` (empty for a Python check's milestone)."""
+    found = set()
+    for step in milestone.steps:
+        for key in STARTS:
+            command = step.params.get(key)
+            if isinstance(command, str) and command.split()[1:]:
+                found.add(command.split()[1].rsplit("/", 1)[-1])
+    return found
+
+
 def milestone_mutants(milestone: Milestone, folders: Dict[str, str], operators: Sequence[Operator]
                       ) -> Tuple[List[Tuple[str, Mutant]], List[str]]:
     found, notes = [], []
     for package in milestone.packages:
         if package in folders:
-            mine, why = package_mutants(folders[package], operators)
+            mine, why = package_mutants(folders[package], operators, names=step_names(milestone), package=package)
             found += mine
             notes += why
     order = {op.name: i for i, op in enumerate(operators)}

@@ -10,10 +10,11 @@ from __future__ import annotations
 
 import ast
 import os
-from typing import Callable, Dict, List, NamedTuple, Optional, Sequence, Tuple
+from typing import AbstractSet, Callable, Dict, List, NamedTuple, Optional, Sequence, Tuple
 
 from course_lint import python_sites as py
 from course_lint import text_sites as tx
+from course_lint import used_files
 
 PYTHON, CPP, CMAKE, LAUNCH = "python", "cpp", "cmake", "launch"
 CPP_SUFFIXES = (".cpp", ".cc", ".cxx", ".h", ".hpp")
@@ -147,11 +148,14 @@ def parses(text: str) -> bool:
         return False
 
 
-def package_mutants(folder: str, operators: Sequence[Operator] = OPERATORS,
-                    cap: int = CAP) -> Tuple[List[Mutant], List[str]]:
+def package_mutants(folder: str, operators: Sequence[Operator] = OPERATORS, cap: int = CAP,
+                    names: AbstractSet[str] = frozenset(), package: str = "") -> Tuple[List[Mutant], List[str]]:
     """Every operator's mutants of the package in `folder` (at most `cap` each), and notes on
-    files passed over (Python that does not parse)."""
+    files passed over (Python that does not parse). With `names` (what a milestone's steps start,
+    see used_files), only the files they reach, when they reach any, are mutated."""
     files = package_files(folder)
+    reached = used_files.used(files, set(names), package or os.path.basename(folder)) if names else None
+    files = [f for f in files if reached is None or f[0] in reached]
     notes = ["%s: not Python that parses: no Python mutants" % os.path.join(os.path.basename(folder), path)
              for path, kind, text in files if kind == PYTHON and not parses(text)]
     package = os.path.basename(os.path.normpath(folder))

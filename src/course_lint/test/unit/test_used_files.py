@@ -1,0 +1,45 @@
+"""A data milestone's mutants come from the files its steps start: scripts by name, C++
+executables by their sources, launch files and the package's nodes they start, CMakeLists.txt."""
+from course_milestones.milestone import Milestone, Step
+
+from course_lint import used_files
+from course_lint.lint import step_names
+
+CMAKE = """project(beginner_tutorials)
+add_executable(talker src/talker.cpp)
+add_executable(listener EXCLUDE_FROM_ALL src/listener.cpp src/common.cpp)
+add_executable(${PROJECT_NAME}_node src/node.cpp)
+"""
+LAUNCH = """<launch>
+  <node pkg="turtlesim" type="turtlesim_node" name="sim"/>
+  <node pkg="beginner_tutorials" type="talker.py" name="talker"/>
+</launch>
+"""
+FILES = [("CMakeLists.txt", "cmake", CMAKE), ("launch/demo.launch", "launch", LAUNCH),
+         ("scripts/talker.py", "python", ""), ("scripts/listener.py", "python", ""),
+         ("src/talker.cpp", "cpp", ""), ("src/listener.cpp", "cpp", ""), ("src/common.cpp", "cpp", "")]
+
+
+def test_executables_and_launched_nodes():
+    assert used_files.executables(CMAKE) == {"talker": ["src/talker.cpp"],
+                                             "listener": ["src/listener.cpp", "src/common.cpp"],
+                                             "${PROJECT_NAME}_node": ["src/node.cpp"]}
+    assert used_files.launched(LAUNCH, "beginner_tutorials") == {"talker.py"}
+
+
+def test_used_by_script_executable_and_launch_file():
+    pkg = "beginner_tutorials"
+    assert used_files.used(FILES, {"listener.py"}, pkg) == {"scripts/listener.py", "CMakeLists.txt"}
+    assert used_files.used(FILES, {"listener"}, pkg) == {"src/listener.cpp", "src/common.cpp", "CMakeLists.txt"}
+    assert used_files.used(FILES, {"demo.launch"}, pkg) == {"launch/demo.launch", "scripts/talker.py", "CMakeLists.txt"}
+    assert used_files.used(FILES, {"somebody_elses.py"}, pkg) is None
+
+
+def test_step_names_are_what_start_steps_run():
+    def start(**params):
+        return Step("start", dict(params, **{"as": "talker", "find": {"publishes": "/chatter"}}), "course.yaml:3")
+    data = Milestone("pubsub", "t", "x", "", ("beginner_tutorials",),
+                     steps=(start(rosrun="beginner_tutorials talker.py"), start(roslaunch="beginner_tutorials demo.launch"),
+                            Step("publishes", {"topic": "/chatter", "node": "talker"}, "course.yaml:4")))
+    assert step_names(data) == {"talker.py", "demo.launch"}
+    assert step_names(Milestone("chatter", "t", "x", "chatter.test", ("chatter",))) == set()

@@ -202,6 +202,53 @@ milestones:
       - teleport: {x: 5, y: 5}
       - publish: {topic: /turtle1/cmd_vel, type: geometry_msgs/Twist, message: {linear: {x: 2.0}}, duration: 1}
       - turtle_moves: {direction: backward, within: 1}
+  - id: teleop_ok
+    title: type (arrow keys on the teleop's terminal)
+    text: test
+    packages: [mybot_teleop]
+    world: [turtlesim]
+    steps:
+      - start: {rosrun: mybot_teleop teleop.py, find: {publishes: /turtle1/cmd_vel}, as: teleop}
+      - teleport: {x: 3, y: 5}
+      - type: {node: teleop, keys: "<up><up>", pause: 0.2}
+      - turtle_moves: {direction: forward, min_distance: 0.3}
+  - id: type_course_error
+    title: keys typed on a node no step started
+    text: test
+    packages: [mybot_teleop]
+    world: [turtlesim]
+    steps:
+      - type: {node: /rosout, keys: x}
+
+  # -- pkg_tf: turtle_following.launch starts turtlesim, two frame broadcasters and the follower
+  - id: tf_ok
+    title: start (roslaunch, find), tf_frame, tf_follows
+    text: test
+    packages: [pkg_tf]
+    steps:
+      - start: {roslaunch: pkg_tf following.launch, find: {node: /listener}, as: following}
+      - tf_frame: {frame: turtle1, parent: world}
+      - tf_follows: {frame: turtle2, target: turtle1, distance: 1.0, within: 40}
+  - id: tf_no_frame
+    title: a frame nobody broadcasts
+    text: test
+    packages: [pkg_tf]
+    steps:
+      - start: {roslaunch: pkg_tf turtle_following.launch}
+      - tf_frame: {frame: turtle1, parent: map, within: 5}
+  - id: tf_not_following
+    title: a frame that does not come close enough
+    text: test
+    packages: [pkg_tf]
+    steps:
+      - start: {roslaunch: pkg_tf turtle_following.launch}
+      - tf_follows: {frame: turtle2, target: turtle1, distance: 0.001, within: 3}
+  - id: launch_not_started
+    title: a launch file that is not there
+    text: test
+    packages: [pkg_tf]
+    steps:
+      - start: {roslaunch: pkg_tf nowhere.launch}
 """
 
 # Which milestones each rostest run holds (in order), and the world it starts.
@@ -211,7 +258,9 @@ RUNS = {
                      "chatter_course_error", "publish_course_error")),
     "params_services": ((), ("param_ok", "param_wrong_value", "not_running", "services_ok", "wrong_answer",
                              "service_exception", "no_service", "not_generated")),
-    "turtle": (("turtlesim",), ("turtle_ok", "turtle_not_moving", "turtle_wrong_direction")),
+    "turtle": (("turtlesim",), ("turtle_ok", "turtle_not_moving", "turtle_wrong_direction", "teleop_ok",
+                                "type_course_error")),
+    "tf": ((), ("tf_ok", "tf_no_frame", "tf_not_following", "launch_not_started")),
 }
 # milestone -> None (passes) or (the cause it records, a regular expression its reason matches)
 EXPECTED: Dict[str, Optional[Tuple[str, str]]] = {
@@ -223,7 +272,8 @@ EXPECTED: Dict[str, Optional[Tuple[str, str]]] = {
     "chatter_wrong_value": ("wrong_value", r"message 1 of .* data is 'hello world [0-9.]+', expected it to match "
                                            r"'\^goodbye' \(the message: \{data: 'hello world"),
     "chatter_not_subscribed": ("not_subscribed", r"subscribes nothing: no subscriber on /chatter_talk"),
-    "chatter_not_printed": ("not_printed", r"`rosrun chatter example_sub.py` printed no line matching 'never said'"),
+    "chatter_not_printed": ("not_printed", r"`rosrun chatter example_sub.py` printed no line matching 'never said' since it started "
+                                           r"\(waited 2 s\); it printed nothing at all"),
     "chatter_not_started": ("not_started", r"package chatter has no executable no_such_script.py \(found: "
                                            r"example_pub.py, example_sub.py\)"),
     "chatter_course_error": ("check_failed", r"^course file error at .*course.yaml:\d+ .*std_msgs/NoSuchType"),
@@ -241,6 +291,13 @@ EXPECTED: Dict[str, Optional[Tuple[str, str]]] = {
     "turtle_not_moving": ("not_moving", r"turtle1 after the last action: it moved 0.00 m"),
     "turtle_wrong_direction": ("not_moving", r"moved [1-5]\.\d+ m \([1-5]\.\d+ m along its heading\).*move 0.2 m "
                                              r"backward"),
+    "teleop_ok": None,
+    "type_course_error": ("check_failed", r"^course file error at .*node '/rosout' is not the `as` name"),
+    "tf_ok": None,
+    "tf_no_frame": ("no_frame", r"TF frame turtle1 has the parent world; the text's parent is map"),
+    "tf_not_following": ("check_failed", r"TF frame turtle2 came no closer than [0-9.]+ m to turtle1 within 3 s"),
+    "launch_not_started": ("not_started", r"no launch file nowhere.launch in package pkg_tf \(found: "
+                                          r"turtle_following.launch\)"),
 }
 
 

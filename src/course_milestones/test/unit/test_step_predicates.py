@@ -209,3 +209,9 @@ def test_every_primitive_of_the_schema_has_a_runner():
 def test_pose2d_reads_like_a_pose():  # the path syntax works on any generated message
     assert field(Pose2D(1.0, 2.0, 0.5), "theta") == 0.5
     assert not predicates.holds({"between": [0, 0.4]}, 0.5).holds
+
+
+def test_a_type_steps_keys_are_characters_and_named_keys():
+    terminal = pytest.importorskip("course_milestones.steps.terminal")
+    assert terminal.keys_of("w<up>x<enter>") == ["w", "up", "x", "\n"]
+    assert terminal.keys_of("<upx") == ["<", "u", "p", "x"]

@@ -84,7 +84,9 @@ PRIMITIVES: Dict[str, Primitive] = {p.name: p for p in (
         NODE, Param("pattern", STR, True, doc="a regular expression a line of the node's output matches"),
         Param("within", NUMBER, default=10.0),
     ), "the node prints a line matching a pattern, after the last action"),
-    Primitive("type", True, (NODE, Param("keys", STR, True), Param("pause", NUMBER, default=0.1)),
+    Primitive("type", True, (NODE, Param("keys", STR, True, doc="typed one character at a time; <up>, <down>, "
+                                                                 "<left>, <right>, <enter>, <space>, <esc> name keys"),
+                             Param("pause", NUMBER, default=0.1, doc="seconds between two keys")),
               "type keys on the node's terminal"),
     Primitive("teleport", True, (
         Param("turtle", STR, default="turtle1"), Param("x", NUMBER, True), Param("y", NUMBER, True),

@@ -36,8 +36,9 @@ def prints(state: StepState, p: Dict, where: str) -> None:
     ended = "" if started.process.node.running() else " (it exited with status %s)" % (
         started.process.node.proc.returncode)
     since = "after the last action" if started.name in state.output_marks else "since it started"
-    raise failed("not_printed", "`%s` printed no line matching %r %s within %g s%s; its output ends with: %r" % (
-        started.command, p["pattern"], since, within, ended, output[-TAIL_CHARS:]))
+    said = "its output ends with: %r" % output[-TAIL_CHARS:] if output.strip() else "it printed nothing at all"
+    raise failed("not_printed", "`%s` printed no line matching %r %s (waited %g s)%s; %s" % (
+        started.command, p["pattern"], since, within, ended, said))
 
 
 def type_keys(state: StepState, p: Dict, where: str) -> None:

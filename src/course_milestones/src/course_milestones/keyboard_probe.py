@@ -13,7 +13,7 @@ from typing import Callable, List, NamedTuple, Optional, Tuple
 
 import rosgraph
 
-from course_milestones import keymap as km
+from course_milestones import causes, keymap as km
 from course_milestones.discovery import CALLER, node_uris
 from course_milestones.students import REGISTER_TIMEOUT, wait_for_publisher
 from course_checks.artifacts import artifact_path
@@ -59,7 +59,8 @@ def discover_keymap(keyboard: PtyKeyboard, commands: TopicRecorder, who: str, fi
     """Type keys into `keyboard` until the search has a key for each direction (or none is left),
     judging each press by the Twists `commands` records after it. With `motion`, each key found
     must also move the robot that way. Reports the key map found as `who`'s; returns the search
-    result and the first failure as a sentence (None if every direction has a key that moves the robot)."""
+    result and the first failure as a sentence carrying its cause (a causes.Finding; None if every
+    direction has a key that moves the robot)."""
     started = time.monotonic()
     keyboard.raw_wait = keyboard.raw_wait or RAW_WAIT
     result, problem = _search(keyboard, commands, km.KeyMapSearch(first=first), motion, window)
@@ -107,22 +108,23 @@ def _restart(keyboard: PtyKeyboard, commands: TopicRecorder) -> Optional[str]:
     keyboard.restart()
     fresh = wait_for_publisher(topic, keyboard, REGISTER_TIMEOUT, before)
     if fresh is None or not wait_connected(commands, fresh.node):
-        return "started again to try letter keys after the arrows, it did not publish %s again" % topic
+        return causes.finding("not_published", "started again to try letter keys after the arrows, it did not "
+                                               "publish %s again" % topic)
     return None
 
 
 def _check_moved(keyboard: PtyKeyboard, probe: km.Probe, before: Optional[Pose], motion: Motion) -> Optional[str]:
     if before is None:
-        return "no pose of %s to check its motion" % motion.subject
+        return causes.finding("course_tools", "no pose of %s to check its motion" % motion.subject)
 
     def went():
         return km.moved(probe.direction, before, motion.pose(), motion.min_distance, motion.min_angle)
     if wait_for(went, motion.interval) or keyboard.press_until(probe.key, went, motion.tries, motion.interval,
                                                                 probe.enter):
         return None
-    return ("after pressing %s, %s did not %s (pose x=%.2f y=%.2f theta=%.2f -> x=%.2f y=%.2f theta=%.2f)"
-            % (km.key_label(probe.key, probe.enter), motion.subject, km.WORDS[probe.direction], *before,
-               *motion.pose()))
+    return causes.finding("not_moving", "after pressing %s, %s did not %s (pose x=%.2f y=%.2f theta=%.2f -> x=%.2f "
+                          "y=%.2f theta=%.2f)" % (km.key_label(probe.key, probe.enter), motion.subject,
+                                                  km.WORDS[probe.direction], *before, *motion.pose()))
 
 
 def report_keymap(result: km.SearchResult, who: str, seconds: float) -> str:

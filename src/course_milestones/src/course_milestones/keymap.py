@@ -14,6 +14,8 @@ from __future__ import annotations
 import math
 from typing import Dict, List, NamedTuple, Optional, Sequence, Tuple
 
+from course_milestones import causes
+
 FORWARD, BACKWARD, LEFT, RIGHT = "forward", "backward", "left", "right"
 DIRECTIONS = (FORWARD, BACKWARD, LEFT, RIGHT)  # also the search order: each differs from the one before
 EXPECTED = {FORWARD: "linear.x > 0", BACKWARD: "linear.x < 0", LEFT: "angular.z > 0", RIGHT: "angular.z < 0"}
@@ -229,23 +231,26 @@ def _keys_tried(outcome_list: Sequence[Tuple[Probe, Outcome]]) -> str:
     return ", ".join(labels)
 
 
-def failure_message(result: SearchResult, topic: str, subject: str) -> Optional[str]:
+def failure_message(result: SearchResult, topic: str, subject: str) -> Optional[causes.Finding]:
     """The sentence telling the student which direction no key gave, naming the keys pressed and
-    the commands seen on `topic`; None when all four directions were found. `subject` names what
-    is driven ('turtle1', 'the Burger')."""
+    the commands seen on `topic` (cause not_moving; node_exited when the controller exited); None
+    when all four directions were found. `subject` names what is driven ('turtle1', 'the Burger')."""
     if result.exited_after is not None and (result.keymap is None or result.missing):
-        return ("the controller exited after the key %s was pressed (keys found so far: %s)"
-                % (key_label(result.exited_after.key, result.exited_after.enter),
-                   result.keymap.describe() if result.keymap else "none"))
+        return causes.finding("node_exited", "the controller exited after the key %s was pressed (keys found so far: "
+                              "%s)" % (key_label(result.exited_after.key, result.exited_after.enter),
+                                       result.keymap.describe() if result.keymap else "none"))
     if result.keymap is None:
         tried = result.missing.get(FORWARD, [])
-        return ("no key made %s go forward: after each of %s, %s got no command with %s (commands seen: %s)"
-                % (subject, _keys_tried(tried), topic, EXPECTED[FORWARD], _seen(tried)))
+        return causes.finding("not_moving", "no key made %s go forward: after each of %s, %s got no command with %s "
+                              "(commands seen: %s)" % (subject, _keys_tried(tried), topic, EXPECTED[FORWARD],
+                                                       _seen(tried)))
     missing = ["no key made %s %s: after pressing %s, %s got no command with %s (commands seen: %s)"
                % (subject, WORDS[d], _keys_tried(result.missing[d]), topic, EXPECTED[d], _seen(result.missing[d]))
                for d in DIRECTIONS if d in result.missing]
     if missing:
-        return "with the %s key map (%s), %s" % (result.keymap.layout, result.keymap.describe(), "; ".join(missing))
+        return causes.finding("not_moving", "with the %s key map (%s), %s" % (result.keymap.layout,
+                                                                              result.keymap.describe(),
+                                                                              "; ".join(missing)))
     return None
 
 

@@ -26,7 +26,7 @@ import roslaunch.core
 import roslaunch.rlutil
 import rosgraph.names
 
-from course_milestones import students
+from course_milestones import causes, students
 from course_milestones.discovery import launch_file_names, package_dir
 from course_milestones.launch_dump import FORMAT
 from course_checks.nodes import find_executable
@@ -62,11 +62,12 @@ class LaunchConfig(NamedTuple):
 
 
 def missing_launch_file(pkg: str, filename: str) -> str:
-    """A sentence for the student when `filename` is not in `pkg`, or "" when it is."""
+    """A sentence for the student when `filename` is not in `pkg` (cause not_started), or "" when it is."""
     found = launch_file_names(pkg)
     if filename in found:
         return ""
-    return "no launch file %s in package %s (found: %s)" % (filename, pkg, ", ".join(found) or "none")
+    return causes.finding("not_started", "no launch file %s in package %s (found: %s)" % (filename, pkg,
+                                                                                       ", ".join(found) or "none"))
 
 
 def resolve(pkg: str, name: str) -> Tuple[Optional[str], str]:

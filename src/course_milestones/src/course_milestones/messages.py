@@ -67,11 +67,18 @@ FindDefinition = Callable[[str], Optional[str]]
 
 
 class InterfaceError(Exception):
-    """Why a message or service class cannot be had, as a sentence for the student."""
+    """Why a message or service class cannot be had, as a sentence for the student; `cause`, the
+    course_milestones.causes key of a check that fails with it."""
+    cause = "not_generated"
 
 
 class NotBuilt(InterfaceError):
     """The type has no generated Python module: the package does not build it (or is not built)."""
+
+
+class NoService(InterfaceError):
+    """The service is not offered, or its type cannot be read from the master and its server."""
+    cause = "no_service"
 
 
 # -- the public entry points -----------------------------------------------------------------------
@@ -99,9 +106,9 @@ def service_class_by_name(service: str) -> type:
     try:
         srv_type = rosservice.get_service_type(service)
     except Exception as err:  # noqa: BLE001 - the master, the socket, or the server's own header
-        raise InterfaceError("cannot read the type of %s: %s" % (service, err)) from None
+        raise NoService("cannot read the type of %s: %s" % (service, err)) from None
     if not srv_type:
-        raise InterfaceError("no service %s is offered" % service)
+        raise NoService("no service %s is offered" % service)
     return service_class(srv_type)
 
 
@@ -552,6 +559,6 @@ def _closure(name: str, specs: Dict[str, object]) -> Set[str]:
     return seen
 
 
-__all__ = ["InterfaceError", "NotBuilt", "message_class", "service_class", "service_class_by_name",
+__all__ = ["InterfaceError", "NotBuilt", "NoService", "message_class", "service_class", "service_class_by_name",
            "message_class_from_text", "service_class_from_text", "imports_safely", "definition_path",
            "read_definition", "definition_text", "generated_module_exists", "built_space", "trusted_path", "forget", "genpy"]

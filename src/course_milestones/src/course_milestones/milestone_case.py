@@ -3,7 +3,9 @@
 unittest puts its own words before a check's message ("None is not true : ...",
 "[] is not true : ..."); a student reads the sentence, not the assertion, so every check
 turns that off here, once. A message that is a causes.Finding records its cause for the grader
-(in the run's artifacts folder) when the assertion fails.
+(in the run's artifacts folder) when the assertion fails; a check of the course's own tools (no
+student package) names the cause of its every failure once, as `failure_cause`. Where a check
+cannot call self.fail (a setUpClass, a helper without the test case), it raises `failure(...)`.
 """
 import unittest
 
@@ -11,21 +13,31 @@ from course_milestones import causes
 from course_checks.artifacts import artifact_dir
 
 
-def _record(message: object) -> None:
-    key = causes.of(message)
+def _record(message: object, default: str = "") -> None:
+    key = causes.of(message, default)
     if key:
         causes.record(artifact_dir(), key)
+
+
+def failure(message: str) -> AssertionError:
+    """The failure to raise with `message` (a causes.Finding) where self.fail cannot be called; its
+    cause is recorded as fail records it."""
+    _record(message)
+    return AssertionError(message)
 
 
 class MilestoneCase(unittest.TestCase):
     """A check's test case whose failure message is the message given to the assertion, alone."""
 
     longMessage = False
+    # The cause of a failure whose message carries none: set only by the checks of the course's own
+    # tools, whose assertions keep unittest's words (course_tools).
+    failure_cause = ""
 
     def _formatMessage(self, msg, standardMsg):  # unittest calls it only for a failing assertion
-        _record(msg)
+        _record(msg, self.failure_cause)
         return super()._formatMessage(msg, standardMsg)
 
     def fail(self, msg=None):
-        _record(msg)
+        _record(msg, self.failure_cause)
         super().fail(msg)

@@ -32,9 +32,13 @@ from typing import Callable, Dict, List, NamedTuple, Optional, Sequence, Tuple, 
 from course_sandbox import policy as sandbox_policy
 from course_sandbox.run import RunSandbox
 
+import rospkg
+
 from course_milestones import causes, master_log
 from course_milestones.discovery import (CALLER, Registration, describe as describe_names, list_executables,
-                                         new_registrations, node_uris, own_names, registrations_with_uris)
+                                         new_registrations, node_uris, own_names, package_dir,
+                                         registrations_with_uris)
+from course_milestones.scripts import output_problems, script_problems
 from course_checks.artifacts import artifact_path
 from course_checks.keyboard import PtyKeyboard
 from course_checks.nodes import NodeProcess
@@ -176,12 +180,38 @@ def did(started: Script, known: Dict[str, int]) -> str:
     return " and ".join(words) if words else "registered nothing"
 
 
-def role_missing(text: str, started: Sequence[Script], known: Dict[str, int], kind: str) -> str:
+def role_missing(text: str, started: Sequence[Script], known: Dict[str, int], kind: str,
+                 pkg: str = "") -> causes.Finding:
     """`text`, the failure when no started executable registered the topic asked for, carrying the
     cause wrong_topic when one did register a topic of its own of that `kind` (publishes,
-    subscribes): the code is there, on another name than the text's."""
+    subscribes): the code is there, on another name than the text's; else why they did not start
+    (start_cause: `pkg`'s scripts, what the started ones printed), else not_started."""
     other = any(own_names(getattr(r, kind)) for s in started for r in registrations_of(s, known))
-    return causes.finding("wrong_topic", text) if other else text
+    if other:
+        return causes.finding("wrong_topic", text)
+    return causes.finding(start_cause(pkg, [output_of(s.node) for s in started]), text)
+
+
+def start_cause(pkg: str, outputs: Sequence[str] = (), default: str = "not_started") -> str:
+    """Why the student's executables did not do what was asked, where their files or output say it:
+    the cause of the first script of `pkg` that rosrun cannot start or Python 3 cannot compile
+    (course_milestones.scripts.script_problems), else of the first mistake `outputs` (what they
+    printed) show (scripts.output_problems: Python 2 met at run time); else `default`."""
+    try:
+        problems = script_problems(package_dir(pkg)) if pkg else []
+    except rospkg.ResourceNotFound:
+        problems = []
+    problems += [p for output in outputs for p in output_problems(output)]
+    return causes.of(problems[0], default) if problems else default
+
+
+def output_of(node: NodeProcess) -> str:
+    """What a started process (a Script's or a PtyKeyboard's node) printed so far ("" when its log
+    cannot be read)."""
+    try:
+        return node.output()
+    except OSError:
+        return ""
 
 
 def servers_first(paths: Sequence[str]) -> List[str]:
@@ -317,10 +347,18 @@ def describe_attempt(name: str, keyboard: PtyKeyboard, seen: Sequence[Registrati
     if seen:
         names = sorted({n for r in seen for n in own_names(r.publishes + r.subscribes + r.services)})
         words = "%s registered %s (%s)" % (name, ", ".join(r.node for r in seen), ", ".join(names) or "no topics")
-        return words if running else "%s, then %s" % (words, ended)
+        return words if running else _printed("%s, then %s" % (words, ended), keyboard)
     if not running:
-        return "%s %s" % (name, ended)
+        return _printed("%s %s" % (name, ended), keyboard)
     return "%s registered no node" % name
+
+
+def _printed(text: str, keyboard: PtyKeyboard) -> Attempt:
+    """`text`, what an executable that exited did, carrying the cause of the first mistake its
+    output shows (scripts.output_problems), if any."""
+    attempt = Attempt(text)
+    attempt.cause = start_cause("", [output_of(keyboard.node)], "")
+    return attempt
 
 
 def registered_words(reg: Registration) -> str:
@@ -333,18 +371,23 @@ def registered_words(reg: Registration) -> str:
     return " and ".join(parts) or "registered nothing of its own"
 
 
-def not_found_message(pkg: str, what: str, tried: Sequence[str]) -> str:
-    """The failure when no executable of `pkg` registered `what` (with what each one did instead)."""
+def not_found_message(pkg: str, what: str, tried: Sequence[str]) -> causes.Finding:
+    """The failure when no executable of `pkg` registered `what` (with what each one did instead),
+    carrying its cause: that of an executable that did it and then stopped, else why they did not
+    start (start_cause: `pkg`'s scripts, then the first cause an attempt's output showed), else
+    not_started."""
     executables = list_executables(pkg)
     if not executables:
-        return "package %s has no executable script (is it chmod +x, in scripts/ or nodes/?)" % pkg
+        return causes.finding(start_cause(pkg), "package %s has no executable script (is it chmod +x, in scripts/ or "
+                                                "nodes/?)" % pkg)
     left = [t for t in tried if getattr(t, "left", False)]
     if left:  # it did what was asked, then stopped: that is the cause, said first
         others = [t for t in tried if t not in left]
         return causes.finding(left[0].cause, "%s; so no executable in package %s %s any more (found: %s%s)" % (
             "; ".join(left), pkg, what, describe_names(executables), "".join("; " + t for t in others)))
-    return "no executable in package %s %s (found: %s; %s)" % (pkg, what, describe_names(executables),
-                                                                "; ".join(tried))
+    printed = next((t.cause for t in tried if getattr(t, "cause", "")), "not_started")
+    return causes.finding(start_cause(pkg, default=printed), "no executable in package %s %s (found: %s; %s)" % (
+        pkg, what, describe_names(executables), "; ".join(tried)))
 
 
 def wait_for_publisher(topic: str, keyboard: PtyKeyboard, timeout: float = 30.0,

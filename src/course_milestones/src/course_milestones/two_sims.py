@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from typing import Dict, List, Optional
 
+from course_milestones import causes
 from course_milestones.discovery import Registration, system_state
 from course_checks.artifacts import save_canvas
 from course_checks.waiting import wait_for
@@ -30,12 +31,13 @@ def wait_for_simulators(timeout: float) -> Dict[str, str]:
 
 
 def missing_simulators(found: Dict[str, str]) -> str:
-    """A sentence naming the namespaces without a turtlesim, or "" when both have one."""
+    """A sentence naming the namespaces without a turtlesim (cause wrong_launch), or "" when both have one."""
     missing = [ns for ns in NAMESPACES if ns not in found]
     if not missing:
         return ""
-    return ("no turtlesim publishes %s after `roslaunch ... %s` (a turtlesim_node in each of the groups "
-            "turtlesim1 and turtlesim2)" % (" or ".join(ns + "/turtle1/pose" for ns in missing), LAUNCH_FILE))
+    return causes.finding("wrong_launch", "no turtlesim publishes %s after `roslaunch ... %s` (a turtlesim_node in "
+                          "each of the groups turtlesim1 and turtlesim2)"
+                          % (" or ".join(ns + "/turtle1/pose" for ns in missing), LAUNCH_FILE))
 
 
 def readers_of(topic: str, ignore: str) -> List[Registration]:

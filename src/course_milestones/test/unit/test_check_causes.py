@@ -1,0 +1,244 @@
+"""Every failure of every Python check carries its cause (course_milestones.causes): read from the
+check nodes' source, each `self.fail(msg)`, each `self.assert*(..., msg)` and each `raise` gives a
+message that is a causes.Finding where it is made, so a new check, or a new assertion in one, that
+fails without a cause fails here. A message counts as a Finding when it is
+- a call of causes.finding (or finding),
+- a call of a helper known to return one (FINDING_HELPERS), or
+- a name (or self./cls. attribute) that every assignment in its module gives a Finding, or the
+  Finding a helper returns in a tuple (FINDING_IN_TUPLE: `result, problem = kp.discover_keymap(...)`).
+An assertion without a message keeps unittest's words: only a check that names its failures' cause
+once (MilestoneCase.failure_cause: the checks of the course's own tools) may have one. A `raise` is
+`raise failure(<Finding>)` (milestone_case.failure records the cause), or a bare re-raise.
+Every cause key a node or a helper names is in causes.CAUSES.
+"""
+import ast
+from pathlib import Path
+from typing import Dict, Iterator, List, Optional, Set, Tuple
+
+import pytest
+
+from course_milestones import causes, keymap, messages, students, two_sims
+
+NODES = Path(__file__).resolve().parents[2] / "nodes"
+HELPERS = Path(causes.__file__).resolve().parent
+CHECKS = sorted(p for p in NODES.iterdir() if p.name.endswith("_check"))
+
+# Helpers whose result (when it is a failure) is a causes.Finding.
+FINDING_HELPERS = {
+    "finding",                # causes.finding
+    "not_found_message",      # students: no executable of the package did what was asked
+    "role_missing",           # students: no started script registered the topic asked for
+    "missing_launch_file",    # launch_files: not_started
+    "missing_simulators",     # two_sims: wrong_launch
+    "failure_message",        # keymap: not_moving, node_exited
+    "run_steps",              # steps.run: the failing step's Finding (course_check)
+}
+# Helpers returning a tuple whose element at that index is a Finding (or None).
+FINDING_IN_TUPLE = {"discover_keymap": 1}
+# Where each assertion method takes its message, by position.
+MSG_POSITION = dict.fromkeys(("assertTrue", "assertFalse", "assertIsNone", "assertIsNotNone"), 1)
+MSG_POSITION.update(dict.fromkeys(("assertEqual", "assertNotEqual", "assertIn", "assertNotIn", "assertIs",
+                                   "assertIsNot", "assertIsInstance", "assertNotIsInstance", "assertLess",
+                                   "assertLessEqual", "assertGreater", "assertGreaterEqual", "assertCountEqual",
+                                   "assertRegex", "assertNotRegex", "assertListEqual", "assertDictEqual"), 2))
+MSG_POSITION.update(dict.fromkeys(("assertAlmostEqual", "assertNotAlmostEqual"), 3))
+MSG_POSITION["fail"] = 0
+
+
+def _called(node: ast.AST) -> str:
+    """The name a call calls: f(...) -> f, a.b.f(...) -> f."""
+    if isinstance(node, ast.Call):
+        func = node.func
+        return func.id if isinstance(func, ast.Name) else func.attr if isinstance(func, ast.Attribute) else ""
+    return ""
+
+
+def _target_name(node: ast.AST) -> str:
+    """x -> x, self.x / cls.x -> x (an attribute of the test case)."""
+    if isinstance(node, ast.Name):
+        return node.id
+    if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id in ("self", "cls"):
+        return node.attr
+    return ""
+
+
+class Module:
+    """One check node's source, read for its failures."""
+
+    def __init__(self, source: str, name: str = "<source>") -> None:
+        self.name = name
+        self.tree = ast.parse(source)
+        self.assigned: Dict[str, List[Tuple[ast.AST, Optional[int]]]] = {}  # name -> (value, index in a tuple)
+        for node in ast.walk(self.tree):
+            if isinstance(node, ast.Assign):
+                for target in node.targets:
+                    if isinstance(target, ast.Tuple):
+                        for i, element in enumerate(target.elts):
+                            if _target_name(element):
+                                self.assigned.setdefault(_target_name(element), []).append((node.value, i))
+                    elif _target_name(target):
+                        self.assigned.setdefault(_target_name(target), []).append((node.value, None))
+
+    def is_finding(self, expr: ast.AST, seen: Optional[Set[str]] = None) -> bool:
+        seen = set() if seen is None else seen
+        if _called(expr) in FINDING_HELPERS:
+            return True
+        if isinstance(expr, ast.BoolOp) and isinstance(expr.op, ast.Or):
+            return all(self.is_finding(v, seen) for v in expr.values)
+        name = _target_name(expr)
+        if name and name not in seen and self.assigned.get(name):
+            seen.add(name)
+            return all(self._gives_finding(value, index, seen) for value, index in self.assigned[name])
+        return False
+
+    def _gives_finding(self, value: ast.AST, index: Optional[int], seen: Set[str]) -> bool:
+        if index is not None:
+            return FINDING_IN_TUPLE.get(_called(value)) == index
+        if isinstance(value, ast.Constant) and value.value in ("", None):  # no problem (yet)
+            return True
+        return self.is_finding(value, seen)
+
+    def failure_cause(self) -> str:
+        """The failure_cause a test case class of this module sets, or ''."""
+        for node in ast.walk(self.tree):
+            if isinstance(node, ast.Assign) and any(_target_name(t) == "failure_cause" for t in node.targets):
+                if isinstance(node.value, ast.Constant):
+                    return node.value.value
+        return ""
+
+    def failures(self) -> Iterator[Tuple[int, str, Optional[ast.AST]]]:
+        """(line, what, message) of every self.fail / self.assert* call; message None when none given."""
+        for node in ast.walk(self.tree):
+            if not (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)
+                    and isinstance(node.func.value, ast.Name) and node.func.value.id == "self"
+                    and node.func.attr in MSG_POSITION):
+                continue
+            position = MSG_POSITION[node.func.attr]
+            keyword = next((k.value for k in node.keywords if k.arg == "msg"), None)
+            message = node.args[position] if len(node.args) > position else keyword
+            yield node.lineno, node.func.attr, message
+
+    def raises(self) -> Iterator[Tuple[int, Optional[ast.AST]]]:
+        for node in ast.walk(self.tree):
+            if isinstance(node, ast.Raise):
+                yield node.lineno, node.exc
+
+    def uncaused(self) -> List[str]:
+        """Where this module fails without a cause, as 'line N: what'."""
+        found = []
+        default = self.failure_cause()
+        for line, what, message in self.failures():
+            if message is None:
+                if not default and what != "fail":
+                    found.append("line %d: %s without a message (and no failure_cause)" % (line, what))
+                elif what == "fail" and not default:
+                    found.append("line %d: fail() without a message" % line)
+            elif not self.is_finding(message):
+                found.append("line %d: %s(..., %s)" % (line, what, ast.unparse(message)[:80]))
+        for line, exc in self.raises():
+            if exc is None:
+                continue  # a re-raise
+            if not (_called(exc) == "failure" and exc.args and self.is_finding(exc.args[0])):
+                found.append("line %d: raise %s" % (line, ast.unparse(exc)[:80]))
+        return found
+
+
+def _keys_named(tree: ast.AST) -> List[Tuple[int, str]]:
+    """The literal cause keys of causes.finding calls, of `default`s given to causes.of and of failure_cause."""
+    keys = []
+    for node in ast.walk(tree):
+        if _called(node) == "finding" and node.args and isinstance(node.args[0], ast.Constant):
+            keys.append((node.lineno, node.args[0].value))
+        if _called(node) == "of" and len(node.args) > 1 and isinstance(node.args[1], ast.Constant):
+            keys.append((node.lineno, node.args[1].value))
+        if isinstance(node, ast.Assign) and any(_target_name(t) in ("failure_cause", "cause") for t in node.targets) \
+                and isinstance(node.value, ast.Constant) and node.value.value:
+            keys.append((node.lineno, node.value.value))
+        if isinstance(node, ast.IfExp):
+            for branch in (node.body, node.orelse):
+                if isinstance(branch, ast.Constant) and isinstance(branch.value, str) and branch.value in causes.BY_KEY:
+                    keys.append((node.lineno, branch.value))
+    return keys
+
+
+def test_there_are_checks():
+    assert len(CHECKS) >= 19, [p.name for p in CHECKS]  # the 18 Python checks and course_check
+
+
+@pytest.mark.parametrize("path", CHECKS, ids=lambda p: p.name)
+def test_every_failure_of_a_check_carries_its_cause(path):
+    module = Module(path.read_text(), path.name)
+    assert not module.uncaused(), "%s fails without a cause (wrap the message in causes.finding(KEY, ...)):\n%s" % (
+        path.name, "\n".join(module.uncaused()))
+
+
+@pytest.mark.parametrize("path", CHECKS + sorted(HELPERS.glob("*.py")), ids=lambda p: p.name)
+def test_the_keys_named_are_causes(path):
+    unknown = [(line, key) for line, key in _keys_named(ast.parse(path.read_text())) if key not in causes.BY_KEY]
+    assert not unknown, "%s names cause keys that are not in causes.CAUSES: %s" % (path.name, unknown)
+
+
+def test_a_failure_without_a_cause_is_found():
+    source = '''
+class C(MilestoneCase):
+    def setUp(self):
+        self.problem = lf.missing_launch_file(pkg, "a.launch") or two_sims.missing_simulators({})
+        self.other = "no turtlesim"
+
+    def test(self):
+        self.assertFalse(self.problem, self.problem)
+        result, problem = kp.discover_keymap(k, c, "who")
+        self.fail(problem)
+        self.assertTrue(x, causes.finding("silent", "%s publishes nothing" % name))
+        self.assertTrue(x, "%s publishes nothing" % name)
+        self.assertEqual(a, b, "not %s" % b)
+        self.assertEqual(a, b)
+        self.assertAlmostEqual(a, b, 2, msg="off")
+        self.assertTrue(x, self.other)
+        self.fail(students.not_found_message(pkg, "publishes /x", tried))
+        raise AssertionError("no executable")
+        raise failure(causes.finding("not_started", "no executable"))
+'''
+    found = Module(source).uncaused()
+    assert [f.split(":")[0] for f in found] == ["line 12", "line 13", "line 14", "line 15", "line 16",
+                                                "line 18"], found
+
+
+def test_a_check_of_the_course_tools_may_keep_unittest_words():
+    source = '''
+class C(MilestoneCase):
+    failure_cause = "course_tools"
+
+    def test(self):
+        self.assertEqual(a, b)
+        self.assertTrue(x, "a sentence")
+'''
+    assert [f.split(":")[0] for f in Module(source).uncaused()] == ["line 7"], Module(source).uncaused()
+
+
+# The helpers the checks fail with give Findings (what the source rule above takes on trust).
+
+def test_keymap_failures_carry_not_moving():
+    result = keymap.SearchResult(keymap=None, missing={keymap.FORWARD: []}, exited_after=None, commands={})
+    message = keymap.failure_message(result, "/turtle1/cmd_vel", "turtle1")
+    assert causes.of(message) == "not_moving" and message.startswith("no key made turtle1 go forward")
+
+
+def test_missing_simulators_is_a_wrong_launch():
+    assert causes.of(two_sims.missing_simulators({})) == "wrong_launch"
+    assert two_sims.missing_simulators(dict.fromkeys(two_sims.NAMESPACES, "/sim")) == ""
+
+
+def test_interface_errors_name_their_cause():
+    assert messages.InterfaceError("x").cause == "not_generated"
+    assert messages.NotBuilt("x").cause == "not_generated"
+    assert messages.NoService("x").cause == "no_service"
+
+
+@pytest.mark.parametrize("output,key", [
+    ("NameError: name 'raw_input' is not defined", "python2"),
+    ("import: not found", "no_shebang"),
+    ("all fine", "not_started"),
+])
+def test_start_cause_reads_what_the_scripts_printed(output, key):
+    assert students.start_cause("", [output]) == key

@@ -141,6 +141,15 @@ milestones:
       - start: {rosrun: pkg_interfaces add_server, find: {advertises: /add_two_ints}, as: server}
       - advertises: {service: /add_two_ints, type: pkg_interfaces/Add, node: server}
       - call: {service: /add_two_ints, request: {num1: 2, num2: 40}, expect: {sum: {equals: 42}}}
+      # a client asks once and exits: it started all the same, and its output is there to read
+      - start: {rosrun: pkg_interfaces add_client, args: [5, 37], as: client}
+      - prints: {node: client, pattern: "^Result: 5 \\+ 37 = 42$"}
+  - id: client_fails
+    title: a client that exits with an error did not start
+    text: test
+    packages: [pkg_interfaces]
+    steps:
+      - start: {rosrun: pkg_interfaces add_client, args: [5]}
   - id: wrong_answer
     title: an answer the text does not give
     text: test
@@ -256,7 +265,7 @@ RUNS = {
     "chatter": ((), ("chatter_ok", "chatter_wrong_topic", "chatter_wrong_type", "chatter_wrong_rate",
                      "chatter_wrong_value", "chatter_not_subscribed", "chatter_not_printed", "chatter_not_started",
                      "chatter_course_error", "publish_course_error")),
-    "params_services": ((), ("param_ok", "param_wrong_value", "not_running", "services_ok", "wrong_answer",
+    "params_services": ((), ("param_ok", "param_wrong_value", "not_running", "services_ok", "client_fails", "wrong_answer",
                              "service_exception", "no_service", "not_generated")),
     "turtle": (("turtlesim",), ("turtle_ok", "turtle_not_moving", "turtle_wrong_direction", "teleop_ok",
                                 "type_course_error")),
@@ -282,6 +291,8 @@ EXPECTED: Dict[str, Optional[Tuple[str, str]]] = {
     "param_wrong_value": ("wrong_value", r"parameter /param_declare/robot_name is 'muto', expected 'robot'"),
     "not_running": ("not_running", r"no node named /nobody is running \(running: none\)"),
     "services_ok": None,
+    "client_fails": ("not_started", r"`rosrun pkg_interfaces add_client 5` started no node: add_client exited with "
+                                    r"status 1, its output ending with 'usage: add_client A B'"),
     "wrong_answer": ("wrong_answer", r"/add_two_ints answered \{sum: 42\} to \{num1: 2, num2: 40\}: sum is 42, "
                                      r"expected 41"),
     "service_exception": ("wrong_answer", r"calling /add_two_ints with .* failed: .*does not fit in int32"),
@@ -309,7 +320,8 @@ def launch_xml(course_yaml: str, world, milestones, artifacts: str) -> str:
         package, kind = schema.WORLDS[name]
         lines.append("  <node pkg=%s type=%s name=%s/>" % (quoteattr(package), quoteattr(kind), quoteattr(name)))
     for name in milestones:
-        lines += ['  <test test-name=%s name=%s pkg="course_milestones" type="course_check" time-limit="60">' % (quoteattr(name), quoteattr(name)),
+        lines += ['  <test test-name=%s name=%s pkg="course_milestones" type="course_check" time-limit="60">'
+                  % (quoteattr(name), quoteattr("course_check_" + name)),  # no student node's name
                   "    <param name=\"course_file\" value=%s/>" % quoteattr(course_yaml),
                   "    <param name=\"milestone\" value=%s/>" % quoteattr(name),
                   "    <env name=\"COURSE_ARTIFACTS_DIR\" value=%s/>" % quoteattr(os.path.join(artifacts, name)),

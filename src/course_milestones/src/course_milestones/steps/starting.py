@@ -4,7 +4,7 @@
 
 With `find`, the text leaves the script (or launch file) open: its own name is tried first, then
 each other of the package's, until one registers what `find` asks. Without it, the named one must
-exist and register a node.
+exist and register a node (or run to its end with status 0, as a client that asks once does).
 """
 from __future__ import annotations
 
@@ -84,6 +84,8 @@ def _rosrun(pkg: str, script: str, args, wanted, find, name: str, within: float)
         raise failed("not_started", "`%s`: package %s has no executable %s (found: %s)%s" % (
             command, pkg, script, discovery.describe(discovery.list_executables(pkg)), discovery.script_hints(pkg)))
     keyboard, found, seen = students.start_and_wait(paths[:1] + args, lambda r: True, name, within)
+    if found is None and keyboard.node.proc.poll() == 0:  # it ran to its end (a client): later steps read its output
+        return Started(name, command, keyboard, None, before, False)
     if found is None:
         attempt = students.describe_attempt(script, keyboard, seen)
         keyboard.end()

@@ -12,12 +12,14 @@ once (MilestoneCase.failure_cause: the checks of the course's own tools) may hav
 Every cause key a node or a helper names is in causes.CAUSES.
 """
 import ast
+import unittest
 from pathlib import Path
 from typing import Dict, Iterator, List, Optional, Set, Tuple
 
 import pytest
 
-from course_milestones import causes, keymap, messages, students, two_sims
+from course_checks import artifacts
+from course_milestones import causes, keymap, messages, milestone_case, students, two_sims
 
 NODES = Path(__file__).resolve().parents[2] / "nodes"
 HELPERS = Path(causes.__file__).resolve().parent
@@ -242,3 +244,40 @@ def test_interface_errors_name_their_cause():
 ])
 def test_start_cause_reads_what_the_scripts_printed(output, key):
     assert students.start_cause("", [output]) == key
+
+
+# What a failing check records (milestone_case), read back as the grader reads it.
+
+class _Check(milestone_case.MilestoneCase):
+    __test__ = False  # run by the tests below, not collected
+
+    def test_finding(self):
+        self.assertTrue(False, causes.finding("silent", "x publishes nothing on /y"))
+
+    def test_plain(self):
+        self.assertEqual(1, 2)
+
+
+class _ToolsCheck(_Check):
+    failure_cause = "course_tools"
+
+
+@pytest.mark.parametrize("case,test,recorded", [
+    (_Check, "test_finding", ["silent"]),
+    (_Check, "test_plain", []),
+    (_ToolsCheck, "test_finding", ["silent"]),
+    (_ToolsCheck, "test_plain", ["course_tools"]),
+])
+def test_a_failing_check_records_its_cause(tmp_path, monkeypatch, case, test, recorded):
+    monkeypatch.setenv(artifacts.ENV_VAR, str(tmp_path))
+    result = unittest.TestResult()
+    case(test).run(result)
+    assert len(result.failures) == 1
+    assert set(causes.recorded(str(tmp_path))) == set(recorded)
+
+
+def test_a_failure_raised_outside_a_test_records_its_cause(tmp_path, monkeypatch):
+    monkeypatch.setenv(artifacts.ENV_VAR, str(tmp_path))
+    error = milestone_case.failure(causes.finding("not_started", "no executable my_node.py"))
+    assert isinstance(error, AssertionError) and str(error) == "no executable my_node.py"
+    assert causes.recorded(str(tmp_path)) == ["not_started"]

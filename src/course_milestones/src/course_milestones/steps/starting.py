@@ -16,7 +16,7 @@ from typing import Callable, Dict, Mapping, Optional
 import rospkg
 import rospy
 
-from course_milestones import causes, discovery, students
+from course_milestones import causes, discovery, launch_files, students
 from course_milestones.discovery import Registration, node_uris
 from course_milestones.steps.state import Started, StepFailed, StepState, course_error, failed
 from course_checks.waiting import wait_for
@@ -76,12 +76,12 @@ def _rosrun(pkg: str, script: str, args, wanted, find, name: str, within: float)
         found, tried = students.start_registering(pkg, args, wanted, hint="^%s$" % re.escape(script), log_name=name,
                                                   timeout=within)
         if found is None:
-            text = students.not_found_message(pkg, find_words(find), tried) + discovery.script_hints(pkg)
-            raise StepFailed(text if causes.of(text) else causes.finding("not_started", text))
+            text = students.not_found_message(pkg, find_words(find), tried)
+            raise StepFailed(causes.finding(causes.of(text, "not_started"), text + discovery.script_hints(pkg)))
         return Started(name, command, found.keyboard, found.registration.node, before, False)
     paths = [p for p in discovery.list_executables(pkg) if os.path.basename(p) == script]
     if not paths:
-        raise failed("not_started", "`%s`: package %s has no executable %s (found: %s)%s" % (
+        raise failed(students.start_cause(pkg), "`%s`: package %s has no executable %s (found: %s)%s" % (
             command, pkg, script, discovery.describe(discovery.list_executables(pkg)), discovery.script_hints(pkg)))
     keyboard, found, seen = students.start_and_wait(paths[:1] + args, lambda r: True, name, within)
     if found is None and keyboard.node.proc.poll() == 0:  # it ran to its end (a client): later steps read its output
@@ -89,15 +89,15 @@ def _rosrun(pkg: str, script: str, args, wanted, find, name: str, within: float)
     if found is None:
         attempt = students.describe_attempt(script, keyboard, seen)
         keyboard.end()
-        raise failed("not_started", "`%s` started no node: %s" % (command, attempt))
+        cause = students.start_cause(pkg, [students.output_of(keyboard.node)])
+        raise failed(cause, "`%s` started no node: %s" % (command, attempt))
     return Started(name, command, keyboard, found.node, before, False)
 
 
 def _roslaunch(pkg: str, filename: str, args, wanted, find, name: str, within: float) -> Started:
     files = discovery.launch_file_names(pkg)
     if wanted is None and filename not in files:
-        raise failed("not_started", "no launch file %s in package %s (found: %s)" % (filename, pkg,
-                                                                                    ", ".join(files) or "none"))
+        raise StepFailed(launch_files.missing_launch_file(pkg, filename))
     order = [filename] + [f for f in files if f != filename] if wanted is not None else [filename]
     tried = []
     for launch_file in order:

@@ -59,7 +59,7 @@ def _not_registered(state: StepState, nodes, topic: str, kind: str) -> Exception
     who = state.who(nodes)
     if nodes is not None and not regs:
         return failed("node_exited" if nodes else "not_started",
-                      "%s is not running any more, so nothing %s %s" % (who, kind, topic))
+                      "%s is not running, so nothing %s %s" % (who, kind, topic))
     other = sorted({n for r in regs for n in own_names(getattr(r, kind))})
     if other:
         return failed("wrong_topic", "%s %s %s, not %s" % (who, kind, ", ".join(other), topic))

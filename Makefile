@@ -12,7 +12,7 @@ HAVE_SOLUTIONS := $(wildcard $(ROOT)/solutions/*/package.xml)
 ROSENV := source $(WS)/devel/setup.bash &&
 REFENV := source $(if $(HAVE_SOLUTIONS),$(SOLUTIONS_WS),$(WS))/devel/setup.bash &&
 
-.PHONY: help deps build demo lab jupyter hub hub-password hub-grade hub-check test flake-hunt grade autograder bench bench-grade docker-check autograder-check clean
+.PHONY: help deps build demo lab jupyter hub hub-password hub-grade hub-check test flake-hunt grade course-lint autograder bench bench-grade docker-check autograder-check clean
 
 # Every target has its line in `make help`: the text after `## ` on the target's own line
 # (tests/test_makefile.py checks that none is missing).
@@ -48,6 +48,12 @@ GRADES ?= $(ROOT)/grades
 grade: build ## grade the reference solutions, or each student in SUBMISSIONS=DIR; results in GRADES=./grades
 	@$(ROSENV) cd $(ROOT) && rosrun course_grader grade $(if $(SUBMISSIONS),--class $(abspath $(SUBMISSIONS))) \
 	  --out $(GRADES) $(if $(JOBS),--jobs $(JOBS))
+
+# A course's checks can fail: its reference solution passes every milestone and mutants of it fail
+# (docs/course_lint.md). COURSE=courses/NAME (default the built-in course), LINT_ARGS="--only chatter".
+COURSE ?=
+course-lint: build ## a course's checks against its reference and mutants of it (COURSE=courses/NAME, LINT_ARGS=...)
+	@$(ROSENV) cd $(ROOT) && rosrun course_lint course-lint $(if $(COURSE),$(abspath $(COURSE)),courses/robotics_labs) $(LINT_ARGS)
 
 # The lab page with turtlesim (http://127.0.0.1:8080/). In the course image LAB_ADDRESS=0.0.0.0 (the
 # port published by the container engine), which requires a token: the URL printed carries it.

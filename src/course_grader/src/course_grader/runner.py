@@ -49,23 +49,27 @@ from course_grader.typical_durations import TYPICAL_S
 from course_grader.verdict import Verdict
 
 MILESTONE_PACKAGE = "course_milestones"
-
-
-def rostest_of(m: Milestone, run_dir: str) -> Tuple[str, str]:
-    """The package and rostest file that check `m` (package "": the file's path): a built-in
-    Python check's file in course_milestones, a course's own (a path), or, for a data milestone,
-    the file written here that starts its world and the generic check node."""
-    if m.test_file:
-        return ("", m.test_file) if os.path.isabs(m.test_file) else (MILESTONE_PACKAGE, m.test_file)
-    path = os.path.join(run_dir, "%s.test" % m.name)
-    with open(path, "w") as f:
-        f.write(course_file.test_launch(m))
-    return "", path
 REFERENCE = "reference"
 PID_FILE = "grading.pid"  # in WORK_DIR: the pid of the grading that writes this output folder
 KEPT_IN_WORK = ("durations.json", PID_FILE)
 # While interrupted: how often the processes below the grader are looked for and killed again.
 INTERRUPT_POLL_S = 0.2
+
+
+def rostest_of(m: Milestone, run_dir: str) -> Tuple[str, str, List[str]]:
+    """The package, rostest file and arguments that check `m`: a built-in Python check's file in
+    course_milestones, a course's own (a path), or, for a data milestone, the file written here
+    that starts its world and the generic check node. A file outside any package is run as
+    course_milestones' (rostest looks its package up otherwise, and finds none)."""
+    if m.test_file and not os.path.isabs(m.test_file):
+        return MILESTONE_PACKAGE, m.test_file, []
+    path = m.test_file
+    if not path:
+        path = os.path.join(run_dir, "%s.test" % m.name)
+        with open(path, "w") as f:
+            f.write(course_file.test_launch(m))
+    return "", path, ["--package=%s" % MILESTONE_PACKAGE, "--pkgdir=%s" % workspace.package_dir(MILESTONE_PACKAGE),
+                      "--results-filename=%s.xml" % m.name]
 
 
 class Busy(RuntimeError):
@@ -359,8 +363,9 @@ class Grader:
                                          disk_folder=self._work_dir(sub.name))
             policy_path = policy.write(os.path.join(run_dir, "sandbox_policy.json"))
             run_env = dict(env, **{ARTIFACTS_VAR: artifacts, POLICY_VAR: policy_path})
-            package, test_file = rostest_of(m, run_dir)
-            result = run_rostest(package, test_file, env=run_env, results_dir=run_dir, timeout=self.options.timeout)
+            package, test_file, args = rostest_of(m, run_dir)
+            result = run_rostest(package, test_file, args=args, env=run_env, results_dir=run_dir,
+                                 timeout=self.options.timeout)
             with open(os.path.join(artifacts, "rostest.txt"), "w") as f:
                 f.write(result.output)
             if self._stop.is_set() and not result.passed:  # ended by the interruption: no verdict

@@ -201,3 +201,9 @@ def shadowed_modules(ws: str, protected: Iterable[str], course_site: str) -> Lis
             elif importlib.util.find_spec(name) is not None:
                 found.append(name)
     return found
+
+
+def package_dir(name: str) -> str:
+    """The folder of the course package `name` (in the grader's own environment, the course's)."""
+    import rospkg
+    return rospkg.RosPack().get_path(name)

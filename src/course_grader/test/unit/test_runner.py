@@ -149,3 +149,20 @@ def test_a_submission_s_runs_go_on_while_the_next_one_builds(tmp_path, monkeypat
     verdicts = grader.grade(subs)
     assert sorted((v.student, v.passed) for v in verdicts) == [("alice", True), ("bob", True), ("carol", True)]
     assert most[0] == 1, "one build at once"
+
+
+def test_each_kind_of_milestone_is_run_by_its_rostest(tmp_path, monkeypatch):
+    """A built-in Python check by package and name; a data milestone by the file written into its
+    run folder (its world, then course_check), and a course's own check by its path, both as
+    course_milestones' files (rostest finds no package for a file outside one)."""
+    monkeypatch.setattr(workspace, "package_dir", lambda name: "/pkgs/" + name)
+    assert runner.rostest_of(Milestone("chatter", "t", "x", "chatter.test", ("chatter",)), str(tmp_path)) == (
+        "course_milestones", "chatter.test", [])
+    data = Milestone("talk", "t", "x", "", ("beginner_tutorials",), world=("turtlesim",), course_file="/c/course.yaml")
+    package, path, args = runner.rostest_of(data, str(tmp_path))
+    assert (package, path) == ("", str(tmp_path / "talk.test"))
+    assert args == ["--package=course_milestones", "--pkgdir=/pkgs/course_milestones", "--results-filename=talk.xml"]
+    written = (tmp_path / "talk.test").read_text()
+    assert 'type="turtlesim_node"' in written and 'type="course_check"' in written and "/c/course.yaml" in written
+    own = Milestone("mine", "t", "x", "/c/checks/mine.test", ("p",))
+    assert runner.rostest_of(own, str(tmp_path))[:2] == ("", "/c/checks/mine.test")

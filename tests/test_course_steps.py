@@ -299,7 +299,7 @@ EXPECTED: Dict[str, Optional[Tuple[str, str]]] = {
     "no_service": ("no_service", r"offers no service /add_three_ints \(it offers /add_two_ints\)"),
     "not_generated": ("not_generated", r"pkg_interfaces/msg/Nope.msg is not generated"),
     "turtle_ok": None,
-    "turtle_not_moving": ("not_moving", r"turtle1 after the last action: it moved 0.00 m"),
+    "turtle_not_moving": ("not_moving", r"turtle1 after teleporting turtle1 to \(5, 5\): it moved 0.00 m"),
     "turtle_wrong_direction": ("not_moving", r"moved [1-5]\.\d+ m \([1-5]\.\d+ m along its heading\).*move 0.2 m "
                                              r"backward"),
     "teleop_ok": None,

@@ -15,6 +15,7 @@ from xml.sax.saxutils import quoteattr
 
 import yaml
 
+from course_milestones import causes
 from course_milestones.milestone import Milestone, Step
 from course_milestones.steps import schema
 
@@ -330,6 +331,11 @@ def _semantics(check: _Checker, path: Path, name: str, params: Dict[str, Any], n
                 check.error(path + ("args",), "%r: a command-line word is a string or a number" % (word,))
     if isinstance(params.get("pattern"), str):
         _regex(check, path + ("pattern",), params["pattern"])
+    cause = params.get("cause")
+    if isinstance(cause, str) and cause not in causes.BY_KEY:
+        close = [k for k in causes.BY_KEY if _close(cause, k)]
+        check.error(path + ("cause",), "%r is no cause%s (known: course_milestones/causes.py)" % (
+            cause, " (did you mean %s?)" % close[0] if close else ""))
     node = params.get("node")
     if isinstance(node, str) and not node.startswith("/") and node not in names:
         check.error(path + ("node",), "%r: no start step before this one is named so (started: %s); a node "

@@ -168,3 +168,14 @@ def test_any_text_gives_a_course_or_its_errors(text):
         parsed(text)
     except CourseError as err:
         assert all(p.startswith("course.yaml:") for p in err.problems)
+
+
+def test_a_check_may_name_its_cause_and_only_a_known_one():
+    text = GOOD.replace('pattern: "hello"}', 'pattern: "hello", cause: param_ignord}')
+    assert any("steps[2].prints.cause: 'param_ignord' is no cause (did you mean param_ignored?)" in p
+               for p in problems(text))
+    good = parsed(GOOD.replace('pattern: "hello"}', 'pattern: "hello", cause: param_ignored}'))
+    assert good.milestones[0].steps[2].params["cause"] == "param_ignored"
+    assert "start: {rosrun: beginner_tutorials talker.py, cause: x" not in GOOD
+    assert any("steps[0].start.cause: unknown field" in p for p in problems(
+        GOOD.replace("as: talker}", "as: talker, cause: not_started}")))

@@ -14,7 +14,7 @@ NOT_SET = object()
 
 
 def set_param(state: StepState, p: Dict, where: str) -> None:
-    state.action()
+    state.action("`rosparam set %s %s`" % (p["name"], p["value"]))
     rospy.set_param(p["name"], p["value"])
 
 

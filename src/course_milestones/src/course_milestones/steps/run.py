@@ -16,6 +16,10 @@ from course_milestones.steps import built, frames, params, schema, services, sta
 from course_milestones.steps.state import StepFailed, StepState, course_error
 
 Primitive = Callable[[StepState, Dict, str], None]
+# Causes a step's own `cause` does not replace: the node is gone, or the check itself is at fault.
+KEEPS_OWN_CAUSE = frozenset(("node_exited", "stopped_listening", "unregistered", "check_failed", "grader_error",
+                             "package_missing", "not_started", "not_executable", "no_shebang", "windows_line_endings",
+                             "python2"))
 
 RUNNERS: Dict[str, Primitive] = {
     "start": starting.start,
@@ -57,6 +61,9 @@ def run_step(state: StepState, primitive: str, given: Dict, where: str) -> Optio
     try:
         RUNNERS[primitive](state, with_defaults(primitive, given), where)
     except StepFailed as failure:
+        own = (given or {}).get("cause")
+        if own and causes.of(failure.finding) not in KEEPS_OWN_CAUSE and own in causes.BY_KEY:
+            return causes.finding(own, failure.finding)
         return failure.finding
     except Exception as err:  # noqa: BLE001 - the check's own fault: said, with the step, not as a traceback
         return causes.finding("grader_error", "the check failed on the step at %s (%s): %s: %s" % (

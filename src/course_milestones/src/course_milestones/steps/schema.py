@@ -43,7 +43,7 @@ NODE = Param("node", STR, doc="the student's node: a `start` step's `as` name, o
                              "default: the node the last `start` step found")
 WITHIN = Param("within", NUMBER, default=15.0, doc="seconds to wait for it")
 
-PRIMITIVES: Dict[str, Primitive] = {p.name: p for p in (
+_PRIMITIVES = (
     Primitive("start", True, (
         Param("rosrun", STR, doc="the text's command after `rosrun`: 'PKG SCRIPT'"),
         Param("roslaunch", STR, doc="the text's command after `roslaunch`: 'PKG FILE.launch'"),
@@ -110,7 +110,13 @@ PRIMITIVES: Dict[str, Primitive] = {p.name: p for p in (
         Param("frame", STR, True), Param("target", STR, True),
         Param("distance", NUMBER, default=1.0, doc="m: how close it comes"), Param("within", NUMBER, default=30.0),
     ), "a TF frame comes within a distance of another"),
-)}
+)
+# Every check may name the cause its failure is grouped under (the class view's groups), when it
+# fails at what it checks: `prints` after a `set_param` fails as param_ignored. A failure that says
+# the node is gone or the course file is wrong keeps its own cause (steps.run.KEEPS_OWN_CAUSE).
+CAUSE = Param("cause", STR, doc="the cause (course_milestones.causes) this check's failure is grouped under")
+PRIMITIVES: Dict[str, Primitive] = {
+    p.name: p if p.action else p._replace(params=p.params + (CAUSE,)) for p in _PRIMITIVES}
 
 # The trusted nodes a milestone's `world:` may start before the student's (rostest <node> lines).
 WORLDS: Dict[str, Tuple[str, str]] = {

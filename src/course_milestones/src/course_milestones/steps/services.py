@@ -51,7 +51,7 @@ def call(state: StepState, p: Dict, where: str) -> None:
         wrong = predicates.problem(predicate)
         if wrong:
             raise course_error(where, "expect.%s: %s" % (name, wrong))
-    state.action()
+    state.action("calling %s" % service)
     try:
         rospy.wait_for_service(service, within)
     except rospy.ROSException:

@@ -60,7 +60,7 @@ def start(state: StepState, p: Dict, where: str) -> None:
     except rospkg.ResourceNotFound:
         raise failed("package_missing", "there is no package %s (the text runs `%s %s`)" % (
             pkg, "rosrun" if p.get("rosrun") else "roslaunch", " ".join(words)))
-    state.action()
+    state.action("`%s %s`" % ("rosrun" if p.get("rosrun") else "roslaunch", " ".join(words)))
     within = float(p.get("within") or students.REGISTER_TIMEOUT)
     if p.get("rosrun"):
         started = _rosrun(pkg, target, args, wanted, p.get("find"), name, within)
@@ -78,6 +78,8 @@ def _rosrun(pkg: str, script: str, args, wanted, find, name: str, within: float)
         if found is None:
             text = students.not_found_message(pkg, find_words(find), tried)
             raise StepFailed(causes.finding(causes.of(text, "not_started"), text + discovery.script_hints(pkg)))
+        # the executable found, which the text may have named otherwise
+        command = "rosrun %s %s" % (pkg, " ".join([os.path.basename(found.path)] + args))
         return Started(name, command, found.keyboard, found.registration.node, before, False)
     paths = [p for p in discovery.list_executables(pkg) if os.path.basename(p) == script]
     if not paths:

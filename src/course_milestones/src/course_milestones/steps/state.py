@@ -71,6 +71,7 @@ class StepState:
         self.pose_recorders: Dict[str, TopicRecorder] = {}
         self.pose_marks: Dict[str, int] = {}
         self.action_time = time.monotonic()
+        self.last_action = ""  # the last action in words ("`rosparam set /a 1`"), for a failure's sentence
         self.closers: List[Callable[[], None]] = []
         self.frames = None  # steps.frames.Frames, from the first TF step on
 
@@ -132,13 +133,19 @@ class StepState:
 
     # -- the last action ----------------------------------------------------------------------------
 
-    def action(self) -> None:
-        """An action step begins: what the processes printed so far and the turtles' poses are 'before'."""
+    def action(self, words: str = "") -> None:
+        """An action step begins (`words`: what it does, as a failure after it names it): what the
+        processes printed so far and the turtles' poses are 'before'."""
+        self.last_action = words
         for hook in self.on_action:
             hook(self)
         self.action_time = time.monotonic()
         self.output_marks = {name: len(s.output()) for name, s in self.started.items()}
         self.pose_marks = {name: r.count for name, r in self.pose_recorders.items()}
+
+    def after_action(self) -> str:
+        """'after <the last action>', for a check's failure."""
+        return "after %s" % (self.last_action or "the last action")
 
     def output_since_action(self, started: Started) -> str:
         return started.output()[self.output_marks.get(started.name, 0):]

@@ -35,7 +35,7 @@ def prints(state: StepState, p: Dict, where: str) -> None:
     output = started.output()
     ended = "" if started.process.node.running() else " (it exited with status %s)" % (
         started.process.node.proc.returncode)
-    since = "after the last action" if started.name in state.output_marks else "since it started"
+    since = state.after_action() if started.name in state.output_marks else "since it started"
     said = "its output ends with: %r" % output[-TAIL_CHARS:] if output.strip() else "it printed nothing at all"
     raise failed("not_printed", "`%s` printed no line matching %r %s (waited %g s)%s; %s" % (
         started.command, p["pattern"], since, within, ended, said))
@@ -46,7 +46,7 @@ def type_keys(state: StepState, p: Dict, where: str) -> None:
     keys = keys_of(str(p["keys"]))
     if not keys:
         raise course_error(where, "keys is empty")
-    state.action()
+    state.action("typing %r on `%s`" % (str(p["keys"]), started.command))
     keyboard = started.process
     keyboard.raw_wait = RAW_WAIT  # a node that reads single keys flushes what came before its raw mode
     pause = float(p.get("pause") or 0.0)

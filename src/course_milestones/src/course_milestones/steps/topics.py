@@ -157,7 +157,7 @@ def publish(state: StepState, p: Dict, where: str) -> None:
     rate, duration = float(p.get("rate") or 10.0), float(p.get("duration") or 0.0)
     if rate <= 0:
         raise course_error(where, "rate must be more than 0 Hz, not %g" % rate)
-    state.action()
+    state.action("publishing %s on %s" % (predicates.describe(message), p["topic"]))
     publisher = rospy.Publisher(p["topic"], cls, queue_size=10)
     try:
         subscribed = [r for r in state.registered(None) if p["topic"] in r.subscribes]

@@ -44,8 +44,8 @@ def teleport(state: StepState, p: Dict, where: str) -> None:
     except rospy.ROSException:
         raise course_error(where, "no %s: teleport needs the course's turtlesim (world: [turtlesim]) and a turtle "
                                   "named %s" % (service, turtle)) from None
-    state.action()
     x, y, theta = float(p["x"]), float(p["y"]), float(p.get("theta") or 0.0)
+    state.action("teleporting %s to (%g, %g)" % (turtle, x, y))
     try:
         rospy.ServiceProxy(service, TeleportAbsolute)(x, y, theta)
     except (rospy.ServiceException, rospy.ROSException) as err:
@@ -73,5 +73,5 @@ def turtle_moves(state: StepState, p: Dict, where: str) -> None:
                      % (turtle, turtle))
     if wait_for(lambda: motion.judge(since(), direction, min_distance).holds, within, 0.05):
         return
-    raise failed("not_moving", "%s after the last action: %s" % (turtle, motion.judge(since(), direction,
-                                                                                       min_distance).text))
+    raise failed("not_moving", "%s %s: %s" % (turtle, state.after_action(), motion.judge(since(), direction,
+                                                                                min_distance).text))

@@ -42,10 +42,18 @@ def _sibling(name: str):
 
 
 _samples = _sibling("test_grader_samples")  # a private copy of the module: changed here, not in its own tests
-checkout_state = _samples.checkout_state
 # Its test_verdict judges only the samples its SAMPLES lists (by their path under tests/submissions,
 # the others being left out where the sandbox cannot isolate attacks): this course's, in this copy.
 _samples.SAMPLES = [_samples.ROOT / "tests" / "submissions" / s.name for s in SAMPLES + [SOLUTION]]
+
+
+def course_state() -> str:
+    """What git says of the course's folder (a sample must not change it; the rest of a shared
+    checkout may change while the grader runs)."""
+    def git(*args: str) -> str:
+        return subprocess.run(["git", "-C", str(ROOT)] + list(args) + ["--", str(COURSE)], stdout=subprocess.PIPE,
+                              text=True, check=False).stdout
+    return git("status", "--porcelain", "--untracked-files=all") + git("diff")
 
 
 class WikiGrading(_samples.SampleGrading):
@@ -56,7 +64,7 @@ class WikiGrading(_samples.SampleGrading):
         self.folder = Path(tempfile.mkdtemp(prefix="grader-wiki-"))
         self.folder.chmod(0o755)  # the sandbox user passes through it to each student's workspace
         self.out = self.folder / "grades"
-        self.checkout_before = checkout_state()
+        self.checkout_before = course_state()
         self.grader = NodeProcess(["rosrun", "course_grader", "grade", "--course", str(COURSE),
                                    "--only-from", "expected.json", "--jobs", str(JOBS), "--out", str(self.out)]
                                   + [str(s) for s in SAMPLES] + [str(SOLUTION)],
@@ -100,8 +108,8 @@ def test_nothing_left_running(graded: Path) -> None:
     assert not left, "processes left running after grading:\n" + "\n".join(left)
 
 
-def test_the_course_checkout_is_unchanged(request: pytest.FixtureRequest, graded: Path) -> None:
-    assert checkout_state() == request.config.stash[GRADING].checkout_before, "the grading changed the checkout"
+def test_the_course_folder_is_unchanged(request: pytest.FixtureRequest, graded: Path) -> None:
+    assert course_state() == request.config.stash[GRADING].checkout_before, "the grading changed " + str(COURSE)
 
 
 def test_every_milestone_has_a_correct_and_a_buggy_sample() -> None:

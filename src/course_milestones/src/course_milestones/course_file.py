@@ -353,6 +353,20 @@ def _semantics(check: _Checker, path: Path, name: str, params: Dict[str, Any], n
         kind = params.get(key)
         if isinstance(kind, str) and name != "type" and not re.match(r"^[A-Za-z]\w*/[A-Za-z]\w*$", kind):
             check.error(path + (key,), "%r: a type is PKG/Name" % kind)
+    layouts = params.get("layouts")
+    if isinstance(layouts, dict):
+        named = set((params.get("messages") or []) + (params.get("services") or []))
+        for kind, layout in layouts.items():
+            if kind not in named:
+                check.error(path + ("layouts", kind), "%r is not among the messages and services named" % (kind,))
+            parts = [layout] if kind in (params.get("messages") or []) else [
+                (layout or {}).get(k) for k in ("request", "response")] if isinstance(layout, dict) else [None]
+            for part in parts:
+                if not (isinstance(part, dict) and all(isinstance(k, str) and isinstance(v, str)
+                                                       for k, v in part.items())):
+                    check.error(path + ("layouts", kind), "expected {field: type} (a service: {request: {field: "
+                                                          "type}, response: {field: type}}); got %r" % (layout,))
+                    break
     for key in ("messages", "services", "actions"):
         for j, kind in enumerate(params.get(key) or []):
             if not isinstance(kind, str) or not re.match(r"^[A-Za-z]\w*/[A-Za-z]\w*$", kind):

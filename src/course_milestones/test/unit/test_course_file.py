@@ -179,3 +179,14 @@ def test_a_check_may_name_its_cause_and_only_a_known_one():
     assert "start: {rosrun: beginner_tutorials talker.py, cause: x" not in GOOD
     assert any("steps[0].start.cause: unknown field" in p for p in problems(
         GOOD.replace("as: talker}", "as: talker, cause: not_started}")))
+
+
+def test_a_layout_names_a_type_the_step_names_and_gives_field_types():
+    base = ("name: x\ntitle: y\nmilestones:\n  - id: a\n    title: t\n    text: x\n    steps:\n"
+            "      - generated:\n          messages: [p/Person]\n          services: [p/Add]\n          layouts:\n")
+    good = parsed(base + "            p/Person: {age: int32}\n"
+                         "            p/Add: {request: {a: int32}, response: {sum: int32}}\n")
+    assert good.milestones[0].steps[0].params["layouts"]["p/Add"]["response"] == {"sum": "int32"}
+    found = problems(base + "            p/Other: {age: int32}\n            p/Add: {a: int32}\n")
+    assert any("layouts.p/Other: 'p/Other' is not among the messages and services named" in p for p in found), found
+    assert any("layouts.p/Add: expected {field: type}" in p for p in found), found

@@ -6,6 +6,7 @@ from __future__ import annotations
 from typing import Dict, List
 
 from course_milestones import messages
+from course_milestones.fields import field_problems, slots_of
 from course_milestones.steps.state import StepState, course_error, failed
 
 # The messages genmsg makes of an action file.
@@ -29,6 +30,20 @@ def generated(state: StepState, p: Dict, where: str) -> None:
                                                                 "action": "action"}[kind]))
     if problems:
         raise failed("not_generated", "; ".join(problems))
+    wrong = [w for name, layout in (p.get("layouts") or {}).items() for w in layout_problems(name, layout)]
+    if wrong:
+        raise failed("wrong_type", "; ".join(wrong))
+
+
+def layout_problems(name: str, layout: Dict) -> List[str]:
+    """How the generated `name`'s fields differ from the text's `layout` (a service's: its request's
+    and response's), in the words a student fixes them by ("Person.msg: age is float32, ...")."""
+    base = name.split("/", 1)[-1]
+    if set(layout) == {"request", "response"} and all(isinstance(v, dict) for v in layout.values()):
+        srv = messages.service_class(name)
+        return (field_problems("%s.srv request" % base, layout["request"], slots_of(srv._request_class))
+                + field_problems("%s.srv response" % base, layout["response"], slots_of(srv._response_class)))
+    return field_problems("%s.msg" % base, layout, slots_of(messages.message_class(name)))
 
 
 def _problem(kind: str, name: str) -> str:

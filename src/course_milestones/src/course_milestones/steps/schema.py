@@ -103,7 +103,9 @@ _PRIMITIVES = (
     Primitive("generated", False, (
         Param("messages", LIST, default=[], doc="pkg/Name"), Param("services", LIST, default=[]),
         Param("actions", LIST, default=[]),
-    ), "the student's build generated these messages, services and actions"),
+        Param("layouts", MAP, default={}, doc="pkg/Name -> the fields the text gives it, {field: type}; a "
+                                              "service's as {request: {...}, response: {...}} (order not compared)"),
+    ), "the student's build generated these messages, services and actions (with the text's fields)"),
     Primitive("tf_frame", False, (Param("frame", STR, True), Param("parent", STR), WITHIN),
               "a TF frame exists (with a parent)"),
     Primitive("tf_follows", False, (

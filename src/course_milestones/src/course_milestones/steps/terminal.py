@@ -37,8 +37,10 @@ def prints(state: StepState, p: Dict, where: str) -> None:
         started.process.node.proc.returncode)
     since = state.after_action() if started.name in state.output_marks else "since it started"
     said = "its output ends with: %r" % output[-TAIL_CHARS:] if output.strip() else "it printed nothing at all"
-    raise failed("not_printed", "`%s` printed no line matching %r %s (waited %g s)%s; %s" % (
-        started.command, p["pattern"], since, within, ended, said))
+    # a node that ended before it printed the line (a client that printed another line is not_printed)
+    gone = ended and (started.node is not None or not output.strip())
+    raise failed("node_exited" if gone else "not_printed", "`%s` printed no line matching %r %s (waited %g s)%s; %s"
+                 % (started.command, p["pattern"], since, within, ended, said))
 
 
 def type_keys(state: StepState, p: Dict, where: str) -> None:

@@ -9,6 +9,7 @@ from typing import Dict, List, Optional, Sequence, Tuple
 import genpy
 import rospy
 
+from course_milestones import students
 from course_milestones.discovery import own_names, topic_types
 from course_milestones.steps import predicates
 from course_milestones.steps.state import StepState, course_error, failed
@@ -77,6 +78,13 @@ def registration(state: StepState, p: Dict, where: str, kind: str):
     def doing() -> List[str]:
         return [r.node for r in state.registered(nodes) if topic in getattr(r, kind)]
     found = wait_for(doing, float(p.get("within") or 0), 0.1)
+    if not found and nodes == ():  # the started process has no node (any more): say what became of it
+        started = state.process(p.get("node"), where)
+        code = started.process.node.proc.poll()
+        if code is not None:
+            raise failed("node_exited", "`%s` exited with status %s, so nothing %s %s%s" % (
+                started.command, code, kind, topic, students.last_words(started.process)))
+        raise failed("not_started", "`%s` runs no node, so nothing %s %s" % (started.command, kind, topic))
     if not found:
         raise _not_registered(state, nodes, topic, kind)
     return found

@@ -30,7 +30,6 @@ import json
 import re
 import shutil
 import subprocess
-import tempfile
 from pathlib import Path
 from typing import Dict, List, Optional, Tuple
 
@@ -39,7 +38,8 @@ import pytest
 from course_sandbox import levels
 from course_sandbox.policy import DEFAULT_USER
 from course_testkit.gradings import processes_of
-from course_checks.nodes import NodeProcess
+from course_testkit import sample_grading
+from course_testkit.sample_grading import BackgroundGrading
 from course_testkit.samples import materialise
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -57,33 +57,17 @@ ISOLATION = levels.detect(DEFAULT_USER)
 SAMPLES = [s for s in ALL_SAMPLES if not (ISOLATION == levels.NONE and needs_isolation(s))]
 JOBS = 3  # 20 reference gradings at 3 gave 0 wrong verdicts, and at the default 6 (bench/grade_bench.py)
 GRADER_TIMEOUT_S = 3600
-STOP_TIMEOUT_S = 30.0
-MESSAGE_CHARS = 2500
 
 
-class SampleGrading:
-    """`rosrun course_grader grade` on every sample, running in the background from the start.
-    Its output goes to a file (a pipe nobody reads yet would fill and stop the grader)."""
+class SampleGrading(BackgroundGrading):
+    """`rosrun course_grader grade` on every sample (derived ones made first), in the background."""
 
     def __init__(self) -> None:
-        self.folder = Path(tempfile.mkdtemp(prefix="grader-samples-"))
-        self.folder.chmod(0o755)  # the sandbox user passes through it to each student's workspace
-        self.out = self.folder / "grades"
+        super().__init__([], "grader-samples-")
         self.checkout_before = checkout_state()
         handed_in = [materialise(s, self.folder / "derived") for s in SAMPLES]
-        self.grader = NodeProcess(["rosrun", "course_grader", "grade"] + [str(s) for s in handed_in]
-                                  + ["--only-from", "expected.json", "--jobs", str(JOBS), "--out", str(self.out)],
-                                  stdin=subprocess.DEVNULL, log_path=str(self.folder / "grade.log"))
-
-    def finished(self, timeout: float) -> Tuple[Optional[int], str]:
-        """Wait for the grader: its exit code (None if still running after `timeout`) and output."""
-        return self.grader.wait(timeout), self.grader.output()
-
-    def stop(self) -> None:
-        """At the session's end: Ctrl+C a grader still running (a session cut short), then remove
-        its folder."""
-        self.grader.stop(STOP_TIMEOUT_S)
-        shutil.rmtree(self.folder, ignore_errors=True)
+        self.args = [str(s) for s in handed_in] + ["--only-from", "expected.json", "--jobs", str(JOBS)]
+        self.start()
 
 
 def checkout_state() -> str:
@@ -104,11 +88,7 @@ def start_early(config: pytest.Config) -> None:
 
 
 def expectations() -> List[Tuple[str, str, Dict]]:
-    found = []
-    for sample in ALL_SAMPLES:
-        for milestone, expected in json.loads((sample / "expected.json").read_text()).items():
-            found.append((sample.name, milestone, expected))
-    return found
+    return sample_grading.expectations(ALL_SAMPLES)
 
 
 @pytest.fixture(scope="module")
@@ -124,27 +104,15 @@ def graded(request: pytest.FixtureRequest) -> Path:
 
 
 def _tests_of(graded: Path, sample: str) -> Dict[str, Dict]:
-    results = json.loads((graded / sample / "results.json").read_text())
-    return {t["name"].split(":", 1)[0]: t for t in results["tests"]}
+    return sample_grading.tests_of(graded, sample)
 
 
 @pytest.mark.parametrize("sample,milestone,expected", expectations(), ids=lambda v: v if isinstance(v, str) else "")
 def test_verdict(graded: Path, sample: str, milestone: str, expected: Dict) -> None:
     if ROOT / "tests" / "submissions" / sample not in SAMPLES:
         pytest.skip("not graded: student code would run with the grader's rights here (isolation %s)" % ISOLATION)
-    tests = _tests_of(graded, sample)
-    assert milestone in tests, "%s: no verdict for %s (graded: %s)" % (sample, milestone, sorted(tests))
-    test = tests[milestone]
-    want = "passed" if expected["passed"] else "failed"
-    assert test["status"] == want, "%s/%s: expected %s, got %s:\n%s" % (sample, milestone, want, test["status"],
-                                                                      test["output"][:MESSAGE_CHARS])
-    if not expected["passed"] and expected.get("reason"):
-        assert re.search(expected["reason"], test["output"], re.S), \
-            "%s/%s: the reason does not match %r:\n%s" % (sample, milestone, expected["reason"],
-                                                          test["output"][:MESSAGE_CHARS])
-    if "cause" in expected:
-        assert test["extra_data"]["cause"] == expected["cause"], "%s/%s: cause %r, expected %r:\n%s" % (
-            sample, milestone, test["extra_data"]["cause"], expected["cause"], test["output"][:MESSAGE_CHARS])
+    problem = sample_grading.verdict_problem(graded, sample, milestone, expected)
+    assert not problem, problem
 
 
 def _csv(path: Path) -> List[Dict[str, str]]:

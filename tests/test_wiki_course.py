@@ -2,8 +2,7 @@
 would: one `rosrun course_grader grade --course courses/ros_wiki_beginner` run over every sample
 (each graded on the milestones its expected.json names) and over the course's reference solution
 (graded as a submission: every milestone, each must pass). Each verdict and reason is compared
-with the sample's expected.json as tests/test_grader_samples.py does for the built-in course (its
-helpers, imported). Without a grader run: every milestone has a correct and a buggy sample, and
+with the sample's expected.json as for the built-in course (course_testkit.sample_grading). Without a grader run: every milestone has a correct and a buggy sample, and
 every Python node of the course is executable in git.
 
 The grading starts as soon as the session knows these tests will run (start_early, called by the
@@ -11,18 +10,16 @@ root conftest.py), so it overlaps the rest of a suite; the first test that needs
 """
 from __future__ import annotations
 
-import importlib.util
-import json
 import subprocess
-import tempfile
 from pathlib import Path
 from typing import Dict, List, Tuple
 
 import pytest
 import yaml
 
-from course_checks.nodes import NodeProcess
+from course_testkit import sample_grading
 from course_testkit.gradings import processes_of
+from course_testkit.sample_grading import BackgroundGrading
 
 ROOT = Path(__file__).resolve().parents[1]
 COURSE = ROOT / "courses" / "ros_wiki_beginner"
@@ -31,20 +28,6 @@ SOLUTION = COURSE / "solution"
 MILESTONES = [m["id"] for m in yaml.safe_load((COURSE / "course.yaml").read_text())["milestones"]]
 JOBS = 2
 GRADER_TIMEOUT_S = 1800
-
-
-def _sibling(name: str):
-    """A module of this folder (the suite imports test files by path: tests/ is not a package)."""
-    spec = importlib.util.spec_from_file_location("_wiki_course_" + name, Path(__file__).with_name(name + ".py"))
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-_samples = _sibling("test_grader_samples")  # a private copy of the module: changed here, not in its own tests
-# Its test_verdict judges only the samples its SAMPLES lists (by their path under tests/submissions,
-# the others being left out where the sandbox cannot isolate attacks): this course's, in this copy.
-_samples.SAMPLES = [_samples.ROOT / "tests" / "submissions" / s.name for s in SAMPLES + [SOLUTION]]
 
 
 def course_state() -> str:
@@ -56,19 +39,14 @@ def course_state() -> str:
     return git("status", "--porcelain", "--untracked-files=all") + git("diff")
 
 
-class WikiGrading(_samples.SampleGrading):
-    """The grader over every sample and the solution, in the background (output to a file); waited
-    for and stopped as the built-in samples' grading is."""
+class WikiGrading(BackgroundGrading):
+    """The grader over every sample and the solution, in the background (output to a file)."""
 
-    def __init__(self) -> None:  # pylint: disable=super-init-not-called (the built-in samples' set-up)
-        self.folder = Path(tempfile.mkdtemp(prefix="grader-wiki-"))
-        self.folder.chmod(0o755)  # the sandbox user passes through it to each student's workspace
-        self.out = self.folder / "grades"
+    def __init__(self) -> None:
+        super().__init__(["--course", str(COURSE), "--only-from", "expected.json", "--jobs", str(JOBS)]
+                         + [str(s) for s in SAMPLES] + [str(SOLUTION)], "grader-wiki-")
         self.checkout_before = course_state()
-        self.grader = NodeProcess(["rosrun", "course_grader", "grade", "--course", str(COURSE),
-                                   "--only-from", "expected.json", "--jobs", str(JOBS), "--out", str(self.out)]
-                                  + [str(s) for s in SAMPLES] + [str(SOLUTION)],
-                                  stdin=subprocess.DEVNULL, log_path=str(self.folder / "grade.log"))
+        self.start()
 
 
 GRADING = pytest.StashKey[WikiGrading]()
@@ -81,8 +59,7 @@ def start_early(config: pytest.Config) -> None:
 
 
 def expectations() -> List[Tuple[str, str, Dict]]:
-    found = [(s.name, m, e) for s in SAMPLES for m, e in json.loads((s / "expected.json").read_text()).items()]
-    return found + [(SOLUTION.name, m, {"passed": True}) for m in MILESTONES]
+    return sample_grading.expectations(SAMPLES) + [(SOLUTION.name, m, {"passed": True}) for m in MILESTONES]
 
 
 @pytest.fixture(scope="module")
@@ -99,8 +76,9 @@ def graded(request: pytest.FixtureRequest) -> Path:
 
 @pytest.mark.parametrize("sample,milestone,expected", expectations(), ids=lambda v: v if isinstance(v, str) else "")
 def test_verdict(graded: Path, sample: str, milestone: str, expected: Dict) -> None:
-    """The verdict, its reason and its cause as expected: test_grader_samples' own comparison."""
-    _samples.test_verdict(graded, sample, milestone, expected)
+    """The verdict, its reason and its cause as expected (course_testkit.sample_grading)."""
+    problem = sample_grading.verdict_problem(graded, sample, milestone, expected)
+    assert not problem, problem
 
 
 def test_nothing_left_running(graded: Path) -> None:

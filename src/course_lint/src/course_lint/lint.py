@@ -19,6 +19,7 @@ from catkin_pkg.packages import find_packages
 from course_milestones.course_file import Course
 from course_milestones.milestone import Milestone
 
+from course_lint import used_files
 from course_lint.mutants import Mutant, Operator, package_mutants
 
 REFERENCE = "reference"
@@ -80,6 +81,8 @@ def step_names(milestone: Milestone) -> Set[str]:
             command = step.params.get(key)
             if isinstance(command, str) and command.split()[1:]:
                 found.add(command.split()[1].rsplit("/", 1)[-1])
+    if milestone.steps and not found:  # it starts nothing (e.g. only `generated`): only the build is its
+        found.add(used_files.CMAKE)
     return found
 
 

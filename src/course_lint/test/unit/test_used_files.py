@@ -43,3 +43,12 @@ def test_step_names_are_what_start_steps_run():
                             Step("publishes", {"topic": "/chatter", "node": "talker"}, "course.yaml:4")))
     assert step_names(data) == {"talker.py", "demo.launch"}
     assert step_names(Milestone("chatter", "t", "x", "chatter.test", ("chatter",))) == set()
+
+
+def test_a_data_milestone_that_starts_nothing_is_linted_on_its_build_only():
+    """interfaces: one `generated` step; the package's nodes are no part of it."""
+    built = Milestone("interfaces", "t", "x", "", ("pkg_interfaces",),
+                      steps=(Step("generated", {"messages": ["pkg_interfaces/Person"]}, "course.yaml:3"),))
+    assert step_names(built) == {"CMakeLists.txt"}
+    files = [("CMakeLists.txt", "cmake", "add_message_files(FILES Person.msg)"), ("nodes/add_server", "python", "")]
+    assert used_files.used(files, step_names(built), "pkg_interfaces") == {"CMakeLists.txt"}

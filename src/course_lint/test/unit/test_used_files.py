@@ -52,3 +52,12 @@ def test_a_data_milestone_that_starts_nothing_is_linted_on_its_build_only():
     assert step_names(built) == {"CMakeLists.txt"}
     files = [("CMakeLists.txt", "cmake", "add_message_files(FILES Person.msg)"), ("nodes/add_server", "python", "")]
     assert used_files.used(files, step_names(built), "pkg_interfaces") == {"CMakeLists.txt"}
+
+
+def test_a_file_left_out_of_the_build_is_a_mutant_only_where_the_steps_use_the_package_s_types():
+    from course_lint.lint import names_own_types
+    talk = Milestone("pubsub", "t", "x", "", ("beginner_tutorials",),
+                     steps=(Step("publishes", {"topic": "/chatter", "type": "std_msgs/String"}, "c:1"),))
+    add = Milestone("add", "t", "x", "", ("beginner_tutorials",),
+                    steps=(Step("generated", {"services": ["beginner_tutorials/AddTwoInts"]}, "c:1"),))
+    assert not names_own_types(talk, "beginner_tutorials") and names_own_types(add, "beginner_tutorials")

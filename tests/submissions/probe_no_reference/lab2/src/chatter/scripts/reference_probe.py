@@ -1,9 +1,11 @@
 """Imported first by this sample's talker: where the course's reference solutions show through to
 a student's process (a package ROS finds, a module Python imports, a path in the environment, and
-with FOLDERS the folders themselves), it says what it saw and exits, so the talker never publishes
-and the milestone fails. The folders are hidden by the sandbox only: where student code runs with
+with FOLDERS the folders themselves: solutions/, solutions_ws/, the samples in tests/submissions,
+every course's solution/ and samples/), it says what it saw and exits, so the talker never
+publishes and the milestone fails. The folders are hidden by the sandbox only: where student code runs with
 the grader's rights (isolation none) they are in sight, so the sample probe_no_reference_folders,
 the one that looks for them, needs isolation."""
+import glob
 import importlib.util
 import os
 import subprocess
@@ -21,8 +23,11 @@ def seen():
     found += ["module %s" % m for m in MODULES if importlib.util.find_spec(m) is not None]
     found += ["%s=%s" % (k, v) for k, v in sorted(os.environ.items()) if "solutions" in v]
     for entry in os.environ.get("ROS_PACKAGE_PATH", "").split(os.pathsep) if FOLDERS else []:
-        for folder in ("solutions", "solutions_ws"):
-            path = os.path.join(os.path.dirname(os.path.dirname(entry)), folder)
+        root = os.path.dirname(os.path.dirname(entry))
+        answers = [os.path.join(root, f) for f in ("solutions", "solutions_ws", "tests/submissions")] + sorted(
+            glob.glob(os.path.join(root, "courses", "*", "solution")) + glob.glob(os.path.join(root, "courses", "*",
+                                                                                               "samples")))
+        for path in answers:
             if entry and os.path.isdir(path) and os.listdir(path):
                 found.append("folder %s" % path)
     return found

@@ -101,3 +101,25 @@ def test_another_course_goes_in_without_its_answers(tmp_path: Path) -> None:
     assert not autograder.answer("courses/any/course.yaml")
     run = (ROOT / "src" / "course_grader" / "autograder" / "run_autograder").read_text()
     assert "course.txt" in run and "--course" in run
+
+
+def test_run_autograder_of_another_course(tmp_path: Path) -> None:
+    """`make autograder COURSE=courses/ros_wiki_beginner MILESTONES=pubsub_py`: Gradescope's run grades
+    a student's package against that course's milestone, read from the zip's copy of the course."""
+    out = tmp_path / "autograder.zip"
+    subprocess.run(["rosrun", "course_grader", "make_autograder", "--out", str(out), "--only", "pubsub_py",
+                    "--course", str(ROOT / "courses" / "ros_wiki_beginner")],
+                   check=True, stdout=subprocess.PIPE, timeout=120)
+    with zipfile.ZipFile(out) as zf:
+        assert zf.read("course.txt").decode().strip() == "courses/ros_wiki_beginner"
+        assert not [n for n in zf.namelist() if "/solution/" in n or "/samples/" in n]
+    sample = ROOT / "courses" / "ros_wiki_beginner" / "samples" / "good_pubsub_py_classes"
+    root = _gradescope_layout(tmp_path, out, sample)
+    env = dict(os.environ, AUTOGRADER_ROOT=str(root), COURSE_WS_SETUP=str(COURSE_SETUP))
+    proc = subprocess.run([str(root / "run_autograder")], cwd=root, env=env, stdout=subprocess.PIPE,
+                          stderr=subprocess.STDOUT, text=True, timeout=600)
+    assert proc.returncode == 0, proc.stdout[-3000:]
+    results = json.loads((root / "results" / "results.json").read_text())
+    _check_format(results)
+    [test] = results["tests"]
+    assert test["name"].startswith("pubsub_py:") and test["status"] == "passed", test["output"]

@@ -229,6 +229,88 @@ milestones:
     steps:
       - type: {node: /rosout, keys: x}
 
+  # -- drawing on the course's turtlesim: shapes driven by constant commands (turtlesim keeps the last
+  # one for 1 s after it), a square by turtlesim's own draw_square (2 m sides), the pen's colour
+  - id: circle_ok
+    title: draws a circle (2 m/s turning 1 rad/s is a radius of 2 m), in_bounds around it
+    text: test
+    packages: [my_robot_controller]
+    world: [turtlesim]
+    steps:
+      - teleport: {x: 5.5, y: 3}
+      - publish: {topic: /turtle1/cmd_vel, type: geometry_msgs/Twist, message: {linear: {x: 2.0}, angular: {z: 1.0}},
+                  duration: 7}
+      - draws: {shape: circle, radius: 2}
+      - in_bounds: {xmin: 3, xmax: 8, ymin: 2.5, ymax: 7.5, for: 9}
+  - id: circle_wrong_radius
+    title: a circle of radius 2 is not one of 1
+    text: test
+    packages: [my_robot_controller]
+    world: [turtlesim]
+    steps:
+      - teleport: {x: 5.5, y: 3}
+      - publish: {topic: /turtle1/cmd_vel, type: geometry_msgs/Twist, message: {linear: {x: 4.0}, angular: {z: 2.0}},
+                  duration: 3.5}
+      - draws: {shape: circle, radius: 1}
+  - id: arc_ok
+    title: draws an arc (1.5 m/s turning 1.5 rad/s for about 2 s)
+    text: test
+    packages: [my_robot_controller]
+    world: [turtlesim]
+    steps:
+      - teleport: {x: 2, y: 2}
+      - publish: {topic: /turtle1/cmd_vel, type: geometry_msgs/Twist, message: {linear: {x: 1.5}, angular: {z: 1.5}},
+                  duration: 1}
+      - draws: {shape: arc, angle: 2.9, radius: 1, tolerance: 0.2}
+  - id: arc_wrong_angle
+    title: an arc turned too far
+    text: test
+    packages: [my_robot_controller]
+    world: [turtlesim]
+    steps:
+      - teleport: {x: 2, y: 2}
+      - publish: {topic: /turtle1/cmd_vel, type: geometry_msgs/Twist, message: {linear: {x: 1.5}, angular: {z: 1.5}},
+                  duration: 1}
+      - draws: {shape: arc, angle: 1.57}
+  - id: out_of_bounds
+    title: a turtle driven into the wall
+    text: test
+    packages: [my_robot_controller]
+    world: [turtlesim]
+    steps:
+      - teleport: {x: 9, y: 5.5}
+      - publish: {topic: /turtle1/cmd_vel, type: geometry_msgs/Twist, message: {linear: {x: 3.0}}, duration: 1}
+      - in_bounds: {for: 3}
+  - id: square_ok
+    title: draws a square (turtlesim's draw_square, from the centre its reset puts the turtle at)
+    text: test
+    packages: [turtlesim]
+    world: [turtlesim]
+    steps:
+      - teleport: {x: 5.544445, y: 5.544445}
+      - start: {rosrun: turtlesim draw_square, find: {publishes: /turtle1/cmd_vel}}
+      - draws: {shape: square, side: 2, within: 45}
+  - id: pen_ok
+    title: pen_colour after set_pen
+    text: test
+    packages: [my_robot_controller]
+    world: [turtlesim]
+    steps:
+      - teleport: {x: 2, y: 8}
+      - call: {service: /turtle1/set_pen, request: {r: 255, g: 0, b: 0, width: 3, 'off': 0}}
+      - publish: {topic: /turtle1/cmd_vel, type: geometry_msgs/Twist, message: {linear: {x: 1.0}}, duration: 0.5}
+      - pen_colour: {r: 255, g: 0, b: 0}
+  - id: pen_wrong_colour
+    title: a blue pen is not red
+    text: test
+    packages: [my_robot_controller]
+    world: [turtlesim]
+    steps:
+      - teleport: {x: 2, y: 9}
+      - call: {service: /turtle1/set_pen, request: {r: 0, g: 0, b: 255, width: 3, 'off': 0}}
+      - publish: {topic: /turtle1/cmd_vel, type: geometry_msgs/Twist, message: {linear: {x: 1.0}}, duration: 0.5}
+      - pen_colour: {r: 255, g: 0, b: 0, within: 2}
+
   # -- pkg_tf: turtle_following.launch starts turtlesim, two frame broadcasters and the follower
   - id: tf_ok
     title: start (roslaunch, find), tf_frame, tf_follows
@@ -269,6 +351,8 @@ RUNS = {
                              "service_exception", "no_service", "not_generated")),
     "turtle": (("turtlesim",), ("turtle_ok", "turtle_not_moving", "turtle_wrong_direction", "teleop_ok",
                                 "type_course_error")),
+    "drawing": (("turtlesim",), ("circle_ok", "circle_wrong_radius", "arc_ok", "arc_wrong_angle", "out_of_bounds")),
+    "square_pen": (("turtlesim",), ("square_ok", "pen_ok", "pen_wrong_colour")),
     "tf": ((), ("tf_ok", "tf_no_frame", "tf_not_following", "launch_not_started")),
 }
 # milestone -> None (passes) or (the cause it records, a regular expression its reason matches)
@@ -304,6 +388,17 @@ EXPECTED: Dict[str, Optional[Tuple[str, str]]] = {
                                              r"backward"),
     "teleop_ok": None,
     "type_course_error": ("check_failed", r"^course file error at .*node '/rosout' is not the `as` name"),
+    "circle_ok": None,
+    "circle_wrong_radius": ("wrong_value", r"turtle1 after publishing .*: it drew a circle of radius 2\.\d\d m; "
+                                           r"the text asks 1 m"),
+    "arc_ok": None,
+    "arc_wrong_angle": ("wrong_value", r"it turned [1-3]\.\d\d rad; the text asks an arc of 1\.57 rad"),
+    "out_of_bounds": ("wrong_value", r"turtle1 left the box x 0\.\.11\.0889, y 0\.\.11\.0889 at \(11\.09, 5\.50\), "
+                                     r"about 0\.\d s after publishing"),
+    "square_ok": None,
+    "pen_ok": None,
+    "pen_wrong_colour": ("wrong_value", r"the pen of turtle1 draws \(0, 0, 255\).* here \(\d+\.\d\d, 9\.00\) after "
+                                        r"publishing .*; the text asks \(255, 0, 0\)"),
     "tf_ok": None,
     "tf_no_frame": ("no_frame", r"TF frame turtle1 has the parent world; the text's parent is map"),
     "tf_not_following": ("check_failed", r"TF frame turtle2 came no closer than [0-9.]+ m to turtle1 within 3 s"),

@@ -371,6 +371,46 @@ def _semantics(check: _Checker, path: Path, name: str, params: Dict[str, Any], n
         for j, kind in enumerate(params.get(key) or []):
             if not isinstance(kind, str) or not re.match(r"^[A-Za-z]\w*/[A-Za-z]\w*$", kind):
                 check.error(path + (key, j), "%r: a type is PKG/Name" % (kind,))
+    if name in DRAWING_PARAMS:
+        _drawing(check, path, name, params)
+
+
+# The drawing steps' parameters that a shape takes (the others it does not), and their ranges.
+DRAWING_PARAMS = {"draws": ("radius", "angle", "side", "tolerance"), "in_bounds": ("for",),
+                  "pen_colour": ("r", "g", "b", "tolerance")}
+SHAPE_PARAMS = {"circle": ("radius",), "arc": ("angle", "radius"), "square": ("side",)}
+MAY_BE_ZERO = ("for", "tolerance", "r", "g", "b")
+
+
+def _drawing(check: _Checker, path: Path, name: str, params: Dict[str, Any]) -> None:
+    """The drawing steps: a shape of steps.shapes.SHAPES given only its own sizes (an arc its angle),
+    sizes and tolerances above 0, a box not empty, colour channels 0-255."""
+    numbers = {k: v for k, v in params.items() if isinstance(v, (int, float)) and not isinstance(v, bool)}
+    for key in DRAWING_PARAMS[name]:
+        value = numbers.get(key)
+        if value is not None and (value < 0 or value == 0 and key not in MAY_BE_ZERO):
+            check.error(path + (key,), "%r: expected a number %s 0" % (value, "from" if key in MAY_BE_ZERO
+                                                                       else "above"))
+    if name == "draws" and isinstance(params.get("shape"), str):
+        shape = params["shape"]
+        if shape not in SHAPE_PARAMS:
+            check.error(path + ("shape",), "%r: a shape is one of %s" % (shape, ", ".join(SHAPE_PARAMS)))
+            return
+        for key in ("radius", "angle", "side"):
+            if params.get(key) is not None and key not in SHAPE_PARAMS[shape]:
+                check.error(path + (key,), "a %s has no %s (it takes %s)" % (shape, key,
+                                                                             ", ".join(SHAPE_PARAMS[shape])))
+        if shape == "arc" and params.get("angle") is None:
+            check.error(path, "an arc needs its angle: the angle turned, rad")
+        if "tolerance" in numbers and numbers["tolerance"] >= 1:
+            check.error(path + ("tolerance",), "%r: a relative tolerance is below 1" % (numbers["tolerance"],))
+    for low, high in (("xmin", "xmax"), ("ymin", "ymax")):
+        if name == "in_bounds" and low in numbers and high in numbers and numbers[low] >= numbers[high]:
+            check.error(path + (high,), "%s %r is not above %s %r: the box is empty" % (high, numbers[high], low,
+                                                                                       numbers[low]))
+    for key in ("r", "g", "b"):
+        if name == "pen_colour" and key in numbers and numbers[key] > 255:
+            check.error(path + (key,), "%r: a colour channel is 0-255" % (numbers[key],))
 
 
 def _regex(check: _Checker, path: Path, pattern: str) -> None:

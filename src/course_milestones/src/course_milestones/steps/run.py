@@ -12,7 +12,8 @@ from __future__ import annotations
 from typing import Callable, Dict, Optional, Sequence
 
 from course_milestones import causes
-from course_milestones.steps import built, frames, params, schema, services, starting, terminal, topics, turtles
+from course_milestones.steps import (built, drawing, frames, params, schema, services, starting, terminal, topics,
+                                     turtles)
 from course_milestones.steps.state import StepFailed, StepState, course_error
 
 Primitive = Callable[[StepState, Dict, str], None]
@@ -38,6 +39,9 @@ RUNNERS: Dict[str, Primitive] = {
     "generated": built.generated,
     "tf_frame": frames.tf_frame,
     "tf_follows": frames.tf_follows,
+    "draws": drawing.draws,
+    "in_bounds": drawing.in_bounds,
+    "pen_colour": drawing.pen_colour,
 }
 
 

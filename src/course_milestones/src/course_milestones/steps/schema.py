@@ -42,6 +42,8 @@ class Primitive(NamedTuple):
 NODE = Param("node", STR, doc="the student's node: a `start` step's `as` name, or a node name (/mimic); "
                              "default: the node the last `start` step found")
 WITHIN = Param("within", NUMBER, default=15.0, doc="seconds to wait for it")
+TURTLE = Param("turtle", STR, default="turtle1", doc="a turtle of the course's turtlesim")
+CANVAS_M = 11.088889  # turtlesim's canvas, m (turtlesim.constants.WORLD_SIZE)
 
 _PRIMITIVES = (
     Primitive("start", True, (
@@ -112,6 +114,29 @@ _PRIMITIVES = (
         Param("frame", STR, True), Param("target", STR, True),
         Param("distance", NUMBER, default=1.0, doc="m: how close it comes"), Param("within", NUMBER, default=30.0),
     ), "a TF frame comes within a distance of another"),
+    Primitive("draws", False, (
+        TURTLE,
+        Param("shape", STR, True, doc="circle, arc or square (steps.shapes.SHAPES)"),
+        Param("radius", NUMBER, doc="m: the circle's or arc's radius (default: any)"),
+        Param("angle", NUMBER, doc="rad: the angle an arc turns, either way (an arc needs it)"),
+        Param("side", NUMBER, doc="m: the square's side (default: any, four of one length)"),
+        Param("tolerance", NUMBER, default=0.15, doc="relative: of the radius, angle, side and a quarter turn"),
+        Param("within", NUMBER, default=20.0, doc="seconds for the shape to be complete"),
+    ), "a turtle draws a circle, an arc or a square, judged on its poses since the last action"),
+    Primitive("in_bounds", False, (
+        TURTLE,
+        Param("xmin", NUMBER, default=0.0, doc="m; the box's edge is outside it (a turtle clamped on the wall hit it)"),
+        Param("xmax", NUMBER, default=CANVAS_M, doc="m (default: turtlesim's canvas)"),
+        Param("ymin", NUMBER, default=0.0, doc="m"),
+        Param("ymax", NUMBER, default=CANVAS_M, doc="m"),
+        Param("for", NUMBER, default=5.0, doc="seconds from the last action during which every pose is inside"),
+    ), "a turtle stays inside a box, from the last action on"),
+    Primitive("pen_colour", False, (
+        TURTLE,
+        Param("r", INT, True, doc="0-255"), Param("g", INT, True, doc="0-255"), Param("b", INT, True, doc="0-255"),
+        Param("tolerance", INT, default=10, doc="per channel"),
+        Param("within", NUMBER, default=5.0, doc="seconds to see the colour"),
+    ), "the turtle's pen draws this colour where it is (the course's turtlesim's /TURTLE/color_sensor)"),
 )
 # Every check may name the cause its failure is grouped under (the class view's groups), when it
 # fails at what it checks: `prints` after a `set_param` fails as param_ignored. A failure that says

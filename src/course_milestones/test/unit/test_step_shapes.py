@@ -4,6 +4,7 @@ what was drawn; no input, however degenerate, makes a judgement raise."""
 import math
 import random
 
+import pytest
 from hypothesis import given, settings, strategies as st
 
 from course_milestones.steps import shapes
@@ -198,3 +199,41 @@ def test_colours_match_per_channel_and_are_summarised():
     many = [(i, i, i) for i in range(5)]
     assert shapes.colours_seen(many, most=2).endswith("and 3 others")
     assert shapes.colours_seen([]) == "no colour"
+
+
+DRAWING_COURSE = """name: t
+title: t
+milestones:
+  - id: a
+    title: a
+    text: a
+    packages: []
+    world: [turtlesim]
+    steps:
+      - draws: {shape: circle, radius: 2}
+      - draws: {shape: arc, angle: 1.5, radius: 1}
+      - draws: {shape: square, side: 2, within: 40}
+      - in_bounds: {for: 3}
+      - pen_colour: {r: 255, g: 0, b: 0}
+%s"""
+
+
+def test_the_loader_takes_the_drawing_steps_and_says_what_is_wrong_with_one(tmp_path):
+    from course_milestones import course_file
+    assert tuple(course_file.SHAPE_PARAMS) == shapes.SHAPES
+    path = tmp_path / "course.yaml"
+    path.write_text(DRAWING_COURSE % "")
+    assert [s.primitive for s in course_file.load(str(path)).milestones[0].steps] == [
+        "draws", "draws", "draws", "in_bounds", "pen_colour"]
+    wrong = ["draws: {shape: hexagon}", "draws: {shape: square, radius: 2}", "draws: {shape: arc}",
+             "draws: {shape: circle, radius: -1, tolerance: 1.5}", "in_bounds: {xmin: 5, xmax: 4}",
+             "pen_colour: {r: 300, g: 0, b: -1}"]
+    path.write_text(DRAWING_COURSE % "".join("      - %s\n" % step for step in wrong))
+    with pytest.raises(course_file.CourseError) as error:
+        course_file.load(str(path))
+    said = str(error.value)
+    for text in ("'hexagon': a shape is one of circle, arc, square", "a square has no radius (it takes side)",
+                 "an arc needs its angle", "draws.radius: -1: expected a number above 0",
+                 "1.5: a relative tolerance is below 1", "xmax 4 is not above xmin 5", "300: a colour channel is 0-255",
+                 "pen_colour.b: -1: expected a number from 0"):
+        assert text in said

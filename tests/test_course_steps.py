@@ -272,6 +272,14 @@ milestones:
       - publish: {topic: /turtle1/cmd_vel, type: geometry_msgs/Twist, message: {linear: {x: 1.5}, angular: {z: 1.5}},
                   duration: 1}
       - draws: {shape: arc, angle: 1.57}
+  - id: draws_not_moving
+    title: a turtle nothing drives draws nothing
+    text: test
+    packages: [my_robot_controller]
+    world: [turtlesim]
+    steps:
+      - teleport: {x: 5, y: 5}
+      - draws: {shape: circle, within: 1}
   - id: out_of_bounds
     title: a turtle driven into the wall
     text: test
@@ -351,7 +359,8 @@ RUNS = {
                              "service_exception", "no_service", "not_generated")),
     "turtle": (("turtlesim",), ("turtle_ok", "turtle_not_moving", "turtle_wrong_direction", "teleop_ok",
                                 "type_course_error")),
-    "drawing": (("turtlesim",), ("circle_ok", "circle_wrong_radius", "arc_ok", "arc_wrong_angle", "out_of_bounds")),
+    "drawing": (("turtlesim",), ("circle_ok", "circle_wrong_radius", "arc_ok", "arc_wrong_angle", "draws_not_moving",
+                                 "out_of_bounds")),
     "square_pen": (("turtlesim",), ("square_ok", "pen_ok", "pen_wrong_colour")),
     "tf": ((), ("tf_ok", "tf_no_frame", "tf_not_following", "launch_not_started")),
 }
@@ -393,6 +402,8 @@ EXPECTED: Dict[str, Optional[Tuple[str, str]]] = {
                                            r"the text asks 1 m"),
     "arc_ok": None,
     "arc_wrong_angle": ("wrong_value", r"it turned [1-3]\.\d\d rad; the text asks an arc of 1\.57 rad"),
+    "draws_not_moving": ("not_moving", r"turtle1 after teleporting turtle1 to \(5, 5\): it turned 0\.00 rad of the "
+                                       r"6\.28 a circle needs; it did not move"),
     "out_of_bounds": ("wrong_value", r"turtle1 left the box x 0\.\.11\.0889, y 0\.\.11\.0889 at \(11\.09, 5\.50\), "
                                      r"about 0\.\d s after publishing"),
     "square_ok": None,

@@ -17,6 +17,12 @@ MODULES = ("my_chatter", "turtle_patrol", "pkg_interfaces", "my_pkg", "mybot_col
 FOLDERS = False
 
 
+def holds_a_file(folder):
+    """Whether a file can be read below `folder` (a hidden one is an empty tmpfs, which may hold
+    the empty folders the sandbox made to mount deeper hidden paths on)."""
+    return any(files for _, _, files in os.walk(folder))
+
+
 def seen():
     listed = subprocess.run(["rospack", "list-names"], stdout=subprocess.PIPE, universal_newlines=True).stdout
     found = ["package %s" % p for p in sorted(PACKAGES & set(listed.split()))]
@@ -28,7 +34,7 @@ def seen():
             glob.glob(os.path.join(root, "courses", "*", "solution")) + glob.glob(os.path.join(root, "courses", "*",
                                                                                                "samples")))
         for path in answers:
-            if entry and os.path.isdir(path) and os.listdir(path):
+            if entry and os.path.isdir(path) and holds_a_file(path):
                 found.append("folder %s" % path)
     return found
 

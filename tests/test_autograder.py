@@ -61,18 +61,24 @@ def _check_format(results: dict) -> None:
     assert results["score"] == sum(t["score"] for t in results["tests"])
 
 
-@pytest.mark.parametrize("submission,passed", [
-    (ROOT / "solutions" / "chatter", True),  # our reference package, handed in as a student would
-    (ROOT / "tests" / "submissions" / "bad_wrong_name", False),
-], ids=["good", "bad"])
-def test_run_autograder(autograder_zip: Path, tmp_path: Path, submission: Path, passed: bool) -> None:
-    root = _gradescope_layout(tmp_path, autograder_zip, submission)
+def _run_autograder(root: Path) -> dict:
+    """run_autograder as Gradescope runs it in `root`: it exits 0 and writes results.json in format."""
     env = dict(os.environ, AUTOGRADER_ROOT=str(root), COURSE_WS_SETUP=str(COURSE_SETUP))
     proc = subprocess.run([str(root / "run_autograder")], cwd=root, env=env, stdout=subprocess.PIPE,
                           stderr=subprocess.STDOUT, text=True, timeout=600)
     assert proc.returncode == 0, proc.stdout[-3000:]
     results = json.loads((root / "results" / "results.json").read_text())
     _check_format(results)
+    return results
+
+
+@pytest.mark.parametrize("submission,passed", [
+    (ROOT / "solutions" / "chatter", True),  # our reference package, handed in as a student would
+    (ROOT / "tests" / "submissions" / "bad_wrong_name", False),
+], ids=["good", "bad"])
+def test_run_autograder(autograder_zip: Path, tmp_path: Path, submission: Path, passed: bool) -> None:
+    root = _gradescope_layout(tmp_path, autograder_zip, submission)
+    results = _run_autograder(root)
     [test] = results["tests"]
     assert test["name"].startswith("chatter:")
     assert test["status"] == ("passed" if passed else "failed"), test["output"]
@@ -115,11 +121,6 @@ def test_run_autograder_of_another_course(tmp_path: Path) -> None:
         assert not [n for n in zf.namelist() if "/solution/" in n or "/samples/" in n]
     sample = ROOT / "courses" / "ros_wiki_beginner" / "samples" / "good_pubsub_py_classes"
     root = _gradescope_layout(tmp_path, out, sample)
-    env = dict(os.environ, AUTOGRADER_ROOT=str(root), COURSE_WS_SETUP=str(COURSE_SETUP))
-    proc = subprocess.run([str(root / "run_autograder")], cwd=root, env=env, stdout=subprocess.PIPE,
-                          stderr=subprocess.STDOUT, text=True, timeout=600)
-    assert proc.returncode == 0, proc.stdout[-3000:]
-    results = json.loads((root / "results" / "results.json").read_text())
-    _check_format(results)
+    results = _run_autograder(root)
     [test] = results["tests"]
     assert test["name"].startswith("pubsub_py:") and test["status"] == "passed", test["output"]

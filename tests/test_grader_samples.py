@@ -31,7 +31,7 @@ import re
 import shutil
 import subprocess
 from pathlib import Path
-from typing import Dict, List, Optional, Tuple
+from typing import Dict, List, Tuple
 
 import pytest
 
@@ -72,10 +72,7 @@ class SampleGrading(BackgroundGrading):
 
 def checkout_state() -> str:
     """What `git status` and `git diff` say of the course checkout (a sample must change neither)."""
-    def git(*args: str) -> str:
-        return subprocess.run(["git", "-C", str(ROOT)] + list(args), stdout=subprocess.PIPE, text=True,
-                              check=False).stdout
-    return git("status", "--porcelain", "--untracked-files=all") + git("diff")
+    return sample_grading.git_state(ROOT)
 
 
 GRADING = pytest.StashKey[SampleGrading]()
@@ -95,12 +92,7 @@ def expectations() -> List[Tuple[str, str, Dict]]:
 def graded(request: pytest.FixtureRequest) -> Path:
     if GRADING not in request.config.stash:  # this module was not known to be selected at collection
         start_early(request.config)
-    grading = request.config.stash[GRADING]
-    returncode, output = grading.finished(GRADER_TIMEOUT_S)
-    assert returncode == 0, "the grader %s:\n%s" % (
-        "exited with %s" % returncode if returncode is not None else "ran out of time", output[-5000:])
-    print(output)
-    return grading.out
+    return request.config.stash[GRADING].graded(GRADER_TIMEOUT_S)
 
 
 def _tests_of(graded: Path, sample: str) -> Dict[str, Dict]:

@@ -33,10 +33,7 @@ GRADER_TIMEOUT_S = 1800
 def course_state() -> str:
     """What git says of the course's folder (a sample must not change it; the rest of a shared
     checkout may change while the grader runs)."""
-    def git(*args: str) -> str:
-        return subprocess.run(["git", "-C", str(ROOT)] + list(args) + ["--", str(COURSE)], stdout=subprocess.PIPE,
-                              text=True, check=False).stdout
-    return git("status", "--porcelain", "--untracked-files=all") + git("diff")
+    return sample_grading.git_state(ROOT, str(COURSE))
 
 
 class WikiGrading(BackgroundGrading):
@@ -66,12 +63,7 @@ def expectations() -> List[Tuple[str, str, Dict]]:
 def graded(request: pytest.FixtureRequest) -> Path:
     if GRADING not in request.config.stash:  # this module was not known to be selected at collection
         start_early(request.config)
-    grading = request.config.stash[GRADING]
-    returncode, output = grading.finished(GRADER_TIMEOUT_S)
-    assert returncode == 0, "the grader %s:\n%s" % (
-        "exited with %s" % returncode if returncode is not None else "ran out of time", output[-5000:])
-    print(output)
-    return grading.out
+    return request.config.stash[GRADING].graded(GRADER_TIMEOUT_S)
 
 
 @pytest.mark.parametrize("sample,milestone,expected", expectations(), ids=lambda v: v if isinstance(v, str) else "")

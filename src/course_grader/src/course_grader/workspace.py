@@ -10,6 +10,7 @@ more overlay, built and run like a student's.
 """
 from __future__ import annotations
 
+import functools
 import glob
 import importlib.util
 import os
@@ -203,7 +204,9 @@ def shadowed_modules(ws: str, protected: Iterable[str], course_site: str) -> Lis
     return found
 
 
+@functools.lru_cache(maxsize=None)
 def package_dir(name: str) -> str:
-    """The folder of the course package `name` (in the grader's own environment, the course's)."""
+    """The folder of the course package `name` (in the grader's own environment, the course's;
+    looked up once: a RosPack crawls every package path)."""
     import rospkg
     return rospkg.RosPack().get_path(name)

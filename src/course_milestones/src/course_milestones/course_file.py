@@ -23,6 +23,7 @@ COURSE_FILE = "course.yaml"
 BUILTIN = "robotics_labs"
 MILESTONE_ID = re.compile(r"^[a-z][a-z0-9_]*$")
 PACKAGE_NAME = re.compile(r"^[a-z][a-z0-9_]*$")
+TYPE_NAME = re.compile(r"^[A-Za-z]\w*/[A-Za-z]\w*$")
 COURSE_KEYS = ("name", "title", "solution", "samples", "milestones")
 MILESTONE_KEYS = ("id", "title", "text", "points", "packages", "world", "time_limit", "steps", "check")
 DEFAULT_TIME_LIMIT_S = 90.0
@@ -349,10 +350,9 @@ def _semantics(check: _Checker, path: Path, name: str, params: Dict[str, Any], n
             continue
         for field, predicate in value.items():
             _predicate(check, path + (key, field), predicate)
-    for key in ("type",):
-        kind = params.get(key)
-        if isinstance(kind, str) and name != "type" and not re.match(r"^[A-Za-z]\w*/[A-Za-z]\w*$", kind):
-            check.error(path + (key,), "%r: a type is PKG/Name" % kind)
+    kind = params.get("type")
+    if isinstance(kind, str) and name != "type" and not TYPE_NAME.match(kind):
+        check.error(path + ("type",), "%r: a type is PKG/Name" % kind)
     layouts = params.get("layouts")
     if isinstance(layouts, dict):
         named = set((params.get("messages") or []) + (params.get("services") or []))
@@ -369,7 +369,7 @@ def _semantics(check: _Checker, path: Path, name: str, params: Dict[str, Any], n
                     break
     for key in ("messages", "services", "actions"):
         for j, kind in enumerate(params.get(key) or []):
-            if not isinstance(kind, str) or not re.match(r"^[A-Za-z]\w*/[A-Za-z]\w*$", kind):
+            if not isinstance(kind, str) or not TYPE_NAME.match(kind):
                 check.error(path + (key, j), "%r: a type is PKG/Name" % (kind,))
     if name in DRAWING_PARAMS:
         _drawing(check, path, name, params)

@@ -40,11 +40,29 @@ class BackgroundGrading:
         """Wait for the grader: its exit code (None if still running after `timeout`) and output."""
         return self.grader.wait(timeout), self.grader.output()
 
+    def graded(self, timeout: float) -> Path:
+        """Wait for the grader to end well (a failed test otherwise, with its output's end); the
+        output folder."""
+        returncode, output = self.finished(timeout)
+        assert returncode == 0, "the grader %s:\n%s" % (
+            "exited with %s" % returncode if returncode is not None else "ran out of time", output[-5000:])
+        print(output)
+        return self.out
+
     def stop(self) -> None:
         """At the session's end: Ctrl+C a grader still running (a session cut short), then remove
         its folder."""
         self.grader.stop(STOP_TIMEOUT_S)
         shutil.rmtree(self.folder, ignore_errors=True)
+
+
+def git_state(root: Path, *paths: str) -> str:
+    """What `git status` and `git diff` say of the checkout at `root` (of `paths` in it, if given):
+    a sample's grading must change neither."""
+    def git(*args: str) -> str:
+        return subprocess.run(["git", "-C", str(root)] + list(args) + (["--"] + list(paths) if paths else []),
+                              stdout=subprocess.PIPE, text=True, check=False).stdout
+    return git("status", "--porcelain", "--untracked-files=all") + git("diff")
 
 
 def expectations(samples: Sequence[Path]) -> List[Tuple[str, str, Dict]]:

@@ -228,7 +228,7 @@ def _milestone(check: _Checker, path: Path, item: Any, root: str, file: str) -> 
     world = item.get("world", [])
     if check.kind(path + ("world",), world, schema.LIST):
         for j, name in enumerate(world):
-            if name not in schema.WORLDS:
+            if not isinstance(name, str) or name not in schema.WORLDS:
                 check.error(path + ("world", j), "%r: no such world (known: %s)" % (name, ", ".join(schema.WORLDS)))
     test_file = ""
     steps: Tuple[Step, ...] = ()
@@ -355,7 +355,7 @@ def _semantics(check: _Checker, path: Path, name: str, params: Dict[str, Any], n
         check.error(path + ("type",), "%r: a type is PKG/Name" % kind)
     layouts = params.get("layouts")
     if isinstance(layouts, dict):
-        named = set((params.get("messages") or []) + (params.get("services") or []))
+        named = {k for k in (params.get("messages") or []) + (params.get("services") or []) if isinstance(k, str)}
         for kind, layout in layouts.items():
             if kind not in named:
                 check.error(path + ("layouts", kind), "%r is not among the messages and services named" % (kind,))

@@ -161,6 +161,43 @@ def test_any_document_gives_a_course_or_its_errors_never_a_traceback(value):
         assert all(m.name for m in course.milestones)
 
 
+# Milestones shaped like real ones, every primitive with its own parameter names and any values: the
+# random documents above seldom reach a step's parameters (CI found `world: [[]]` unhashable).
+param_values = st.recursive(
+    st.none() | st.booleans() | st.integers() | st.floats() | st.text(max_size=10)
+    | st.sampled_from(["turtlesim", "std_msgs/String", "a b", "/x", "circle", "arc", "square", "gt", "approx"]),
+    lambda inner: st.lists(inner, max_size=3) | st.dictionaries(
+        st.sampled_from(["gt", "lt", "approx", "tolerance", "between", "matches", "request", "response",
+                         "std_msgs/String", "publishes", "node"]) | st.text(max_size=4), inner, max_size=3),
+    max_leaves=10)
+steps = st.sampled_from(list(schema.PRIMITIVES)).flatmap(lambda name: st.dictionaries(
+    st.sampled_from([p.name for p in schema.PRIMITIVES[name].params] + ["bogus"]), param_values,
+    max_size=6).map(lambda params: {name: params}))
+milestones = st.fixed_dictionaries(
+    {"id": st.sampled_from(["a", "b", 3]), "title": st.just("t"), "text": st.just("x")},
+    optional={"steps": st.lists(steps, max_size=4), "world": param_values, "packages": param_values,
+              "points": param_values, "time_limit": param_values, "check": param_values})
+
+
+def test_a_world_or_a_type_that_is_a_list_is_an_error_not_a_traceback():
+    bad = {"id": "a", "title": "t", "text": "x", "world": [[]],
+           "steps": [{"generated": {"messages": [["x"]], "layouts": {"a/B": {"x": "int32"}}}}]}
+    with pytest.raises(CourseError) as err:
+        parsed(yaml.safe_dump({"name": "x", "title": "y", "milestones": [bad]}))
+    assert any("milestones[0].world[0]: []: no such world" in p for p in err.value.problems)
+    assert any("messages[0]: ['x']: a type is PKG/Name" in p for p in err.value.problems)
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(milestones, max_size=3))
+def test_any_milestone_gives_a_course_or_its_errors_never_a_traceback(value):
+    text = yaml.safe_dump({"name": "x", "title": "y", "milestones": value}, allow_unicode=True)
+    try:
+        parsed(text)
+    except CourseError as err:
+        assert err.problems and all(p.startswith("course.yaml:") for p in err.problems)
+
+
 @settings(max_examples=200, deadline=None)
 @given(st.text(max_size=200))
 def test_any_text_gives_a_course_or_its_errors(text):

@@ -11,7 +11,7 @@ import io
 import socket
 import struct
 import xmlrpc.client
-from typing import Tuple, Type
+from typing import Optional, Tuple, Type
 from urllib.parse import urlparse
 
 from rosgraph.network import read_ros_handshake_header, write_ros_handshake_header
@@ -98,3 +98,19 @@ def call(address: Tuple[str, int], service: str, srv_class: Type, request, timeo
     if not ok:
         raise LookupError("the service answered with an error: %s" % body.decode("utf-8", "replace"))
     return srv_class._response_class().deserialize(body)
+
+
+def address_or_none(master_uri: str, node: str, topic: str) -> Optional[Tuple[str, int]]:
+    """topic_address, or None while the node or its topic is not up yet (to wait on)."""
+    try:
+        return topic_address(master_uri, node, topic)
+    except (OSError, LookupError):
+        return None
+
+
+def service_address_or_none(master_uri: str, service: str) -> Optional[Tuple[str, int]]:
+    """service_address, or None while the service is not up yet (to wait on)."""
+    try:
+        return service_address(master_uri, service)
+    except (OSError, LookupError):
+        return None

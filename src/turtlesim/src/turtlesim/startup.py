@@ -154,10 +154,10 @@ def env_var(name: str, value: Optional[str]) -> Iterator[None]:
 def init_node(name: str, argv: List[str]) -> None:
     """rospy.init_node(name, argv=argv), without the fixed 0.1 s wait and the package crawl, and
     with an exit that does not spin a core (course_rospy.quick_exit), and a TCPROS server that an
-    idle connection cannot block (course_rospy.inbound_threads)."""
+    idle or half-sent connection cannot block or exhaust (course_rospy.inbound_headers)."""
     rospy = import_rospy()
-    from course_rospy import inbound_threads, quick_exit
+    from course_rospy import inbound_headers, quick_exit
     quick_exit.install()
-    inbound_threads.install()
+    inbound_headers.install()
     with quick_registration_poll(), env_var(LOG_CONFIG_ENV, log_config_file()):
         rospy.init_node(name, argv=argv)

@@ -222,6 +222,9 @@ class WaitingHeaders:
         waiting.received += data
         if waiting.announced() + _LENGTH.size > self.max_header_bytes:
             self._drop(waiting, "header over %d bytes" % self.max_header_bytes)
+        elif len(waiting.received) == _LENGTH.size and waiting.announced() == 0:
+            # rospy would wait for more than the length before it parses: on its thread, forever
+            self._drop(waiting, "empty header")
         elif waiting.wanted() == 0:
             self._forget(waiting)
             try:
@@ -259,7 +262,10 @@ def _callback(self: tcpros_base.TCPROSServer, sock: socket.socket, client_addr: 
     if waiting is None:  # only the server's accept thread gets here: no race
         waiting = WaitingHeaders(functools.partial(_original_callback, self), rospy.core.logwarn)
         setattr(self, _ATTRIBUTE, waiting)
-        self.tcp_ros_server.server_sock.listen(ACCEPT_BACKLOG)
+        try:
+            self.tcp_ros_server.server_sock.listen(ACCEPT_BACKLOG)
+        except (AttributeError, OSError) as e:  # rospy's backlog stays: slower bursts, no harm
+            rospy.core.logwarn("TCPROS server: backlog stays rospy's: %s" % e)
     waiting.add(sock, client_addr)
 
 

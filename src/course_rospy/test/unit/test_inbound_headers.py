@@ -108,6 +108,13 @@ def test_too_long_a_header_is_refused():
         n.headers.close()
 
 
+def test_an_empty_header_is_refused(node):
+    """rospy's own read would wait for a byte after the length, on its handler's thread, forever."""
+    client = node.connection(struct.pack("<I", 0))
+    assert wait_for(lambda: closed(client), DEADLINE_S)
+    assert "1 empty header" in node.warnings[0] and node.handed == []
+
+
 def test_past_the_bound_the_oldest_are_closed_with_one_warning_and_a_new_client_gets_through():
     n = Node(max_waiting=3)
     try:

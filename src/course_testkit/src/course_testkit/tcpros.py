@@ -1,7 +1,7 @@
 """A bare TCPROS client (no rospy node in the test process): find a node's TCPROS port, hold an
 idle connection to it, take one message of a topic from it, call one of its services.
 
-For tests of what a node does with its inbound connections (course_rospy.inbound_threads): every
+For tests of what a node does with its inbound connections (course_rospy.inbound_headers): every
 call has a deadline and raises socket.timeout (an OSError) past it, so a blocked node fails the
 test instead of hanging it.
 """

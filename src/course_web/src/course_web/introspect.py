@@ -17,7 +17,7 @@ from course_introspection.plot_fields import PlotPathError, expand_shorthand, fi
 Json = Dict[str, Any]
 MAX_PLOT_SPEC = 2000
 MAX_PLOT_FIELDS = 32
-DEFAULT_IMAGE_TOPIC = "/turtlesim/image"  # the canvas panel's topic (www/index.html's default)
+DEFAULT_CANVAS_TOPIC = "/turtlesim/scene"  # what the canvas panel draws from (www/index.html's default node + /scene)
 
 
 class ApiError(ValueError):
@@ -88,11 +88,11 @@ def plot_fields(master: Master, spec: Optional[str]) -> Json:
     return {"fields": fields}
 
 
-def health(master: Master, image_topic: Optional[str]) -> Json:
+def health(master: Master, canvas_topic: Optional[str]) -> Json:
     """In words, what keeps the page from showing the lab: the master does not answer (the student
-    stopped `roscore`), or nothing publishes the canvas's image topic (turtlesim is not running).
+    stopped `roscore`), or nothing publishes the canvas's topic (turtlesim is not running).
     `state` is "ok", "no-master" or "no-publisher"; `says` is the sentence the page shows."""
-    topic = "/" + (image_topic or DEFAULT_IMAGE_TOPIC).strip().lstrip("/")
+    topic = "/" + (canvas_topic or DEFAULT_CANVAS_TOPIC).strip().lstrip("/")
     try:
         publishers = {row[0]: row[1] for row in master.system_state()[0]}
     except ApiError as err:

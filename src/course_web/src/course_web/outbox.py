@@ -61,15 +61,20 @@ class Outbox:
                 self._order.remove(key)
 
     def put(self, key: Hashable, payload: Payload) -> bool:
-        """Queue a message of a subscription; False when the lane is gone (unsubscribed)."""
+        """Queue a message of a subscription. True when the sender must be woken: the lane was
+        empty, so the sender may be asleep without knowing when this lane is due. False when the
+        lane is gone (unsubscribed), or already held a message: the sender is then sending, or
+        sleeping until that message (this lane's next slot) is due, and this one takes its place
+        or follows it. A 62.5 Hz pose throttled to 20 Hz wakes the sender 20 times a second, not 62.5."""
         with self._lock:
             lane = self._lanes.get(key)
             if lane is None:
                 return False
+            was_empty = not lane.queue
             if len(lane.queue) == lane.queue.maxlen:
                 lane.dropped += 1
             lane.queue.append(payload)
-            return True
+            return was_empty
 
     def reply(self, payload: Payload) -> None:
         """Queue a reply (status, service_response)."""

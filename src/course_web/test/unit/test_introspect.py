@@ -103,23 +103,23 @@ class DownMaster:
 
 class NoTurtlesim(FakeMaster):
     def system_state(self):
-        return [[row for row in STATE[0] if row[0] != "/turtlesim/image"], STATE[1], STATE[2]]
+        return [[row for row in STATE[0] if row[0] != "/turtlesim/scene"], STATE[1], STATE[2]]
 
 
 def test_health_says_in_words_that_the_master_or_turtlesim_is_gone():
-    with_image = [STATE[0] + [["/turtlesim/image", ["/turtlesim"]]], STATE[1], STATE[2]]
+    with_image = [STATE[0] + [["/turtlesim/scene", ["/turtlesim"]]], STATE[1], STATE[2]]
     master = FakeMaster()
     master.system_state = lambda: with_image
-    assert introspect.health(master, "/turtlesim/image") == {
-        "state": "ok", "topic": "/turtlesim/image", "says": "", "publishers": ["/turtlesim"]}
+    assert introspect.health(master, "/turtlesim/scene") == {
+        "state": "ok", "topic": "/turtlesim/scene", "says": "", "publishers": ["/turtlesim"]}
     assert introspect.health(master, "")["state"] == "ok"  # the canvas's default topic
-    gone = introspect.health(NoTurtlesim(), "turtlesim/image")
-    assert gone["state"] == "no-publisher" and gone["topic"] == "/turtlesim/image"
+    gone = introspect.health(NoTurtlesim(), "turtlesim/scene")
+    assert gone["state"] == "no-publisher" and gone["topic"] == "/turtlesim/scene"
     assert "turtlesim is not running" in gone["says"] and "rosrun turtlesim turtlesim_node" in gone["says"]
     master.dead = ("/turtlesim",)  # killed by a signal rospy does not catch: registered, silent
-    silent = introspect.health(master, "/turtlesim/image")
+    silent = introspect.health(master, "/turtlesim/scene")
     assert silent["state"] == "no-publisher" and "/turtlesim is still registered, but does not answer" in silent["says"]
-    down = introspect.health(DownMaster(), "/turtlesim/image")
+    down = introspect.health(DownMaster(), "/turtlesim/scene")
     assert down["state"] == "no-master"
     assert down["says"].startswith("The ROS master at http://localhost:11311 does not answer")
     assert "roscore" in down["says"]
@@ -130,4 +130,4 @@ def test_health_passes_on_other_failures():
         def system_state(self):
             raise introspect.ApiError("not this", 400)
     with pytest.raises(introspect.ApiError):
-        introspect.health(Refusing(), "/turtlesim/image")
+        introspect.health(Refusing(), "/turtlesim/scene")

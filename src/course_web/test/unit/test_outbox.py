@@ -55,3 +55,14 @@ def test_a_closed_lane_refuses_late_messages():
     outbox.close_lane("a")
     assert outbox.put("a", "late") is False
     assert drain(outbox) == []
+
+
+def test_only_a_message_into_an_empty_lane_wakes_the_sender():
+    outbox = Outbox()
+    outbox.open_lane("pose", queue_length=1, throttle_ms=50)
+    assert outbox.put("pose", "p1") is True  # the sender may be asleep with no deadline
+    assert outbox.take(10.0) == "p1"
+    assert outbox.put("pose", "p2") is True
+    assert outbox.put("pose", "p3") is False  # the sender sleeps until p2's slot, which p3 now takes
+    assert outbox.take(10.01) is None and outbox.next_due(10.01) > 0
+    assert outbox.take(10.05) == "p3"

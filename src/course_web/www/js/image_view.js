@@ -3,13 +3,8 @@
 // (canvas.dataset.frames / .fps, read by the tests and the benchmark).
 export function imageView(canvas, fpsLabel) {
   const context = canvas.getContext('2d');
-  let frames = 0;
+  const drawn = frameCounter(canvas, fpsLabel);
   let drawing = false;
-  setInterval(() => {
-    if (fpsLabel) fpsLabel.textContent = frames + ' fps';
-    canvas.dataset.fps = String(frames);
-    frames = 0;
-  }, 1000);
   return function draw(blob, header) {
     if (drawing) return;
     drawing = true;
@@ -20,8 +15,22 @@ export function imageView(canvas, fpsLabel) {
       }
       context.drawImage(bitmap, 0, 0);
       bitmap.close();
-      frames += 1;
-      canvas.dataset.frames = String(Number(canvas.dataset.frames || 0) + 1);
+      drawn();
     }).catch(() => {}).finally(() => { drawing = false; });
+  };
+}
+
+// Counts the pictures drawn on `canvas`: canvas.dataset.frames (all of them) and, each second,
+// canvas.dataset.fps and the label's text. Returns the function to call after each picture.
+export function frameCounter(canvas, fpsLabel) {
+  let frames = 0;
+  setInterval(() => {
+    if (fpsLabel) fpsLabel.textContent = frames + ' fps';
+    canvas.dataset.fps = String(frames);
+    frames = 0;
+  }, 1000);
+  return function drawn() {
+    frames += 1;
+    canvas.dataset.frames = String(Number(canvas.dataset.frames || 0) + 1);
   };
 }

@@ -4,6 +4,9 @@
 import {ask} from './api.js';
 
 const SPAN_S = 20;
+// At most 20 samples a second per topic, the newest (the server drops the rest): a 20 s plot shows no more,
+// and a 62.5 Hz pose sent whole would cost the server and the page three times as much.
+const THROTTLE_MS = 50;
 const COLOURS = ['#1f77b4', '#ff7f0e', '#2ca02c', '#d62728', '#9467bd', '#8c564b', '#e377c2', '#7f7f7f', '#bcbd22', '#17becf'];
 const MARGIN = {left: 56, right: 10, top: 10, bottom: 24};
 
@@ -90,7 +93,7 @@ export function mount(bridge, root) {
           const value = valueAt(msg, s.steps);
           if (value !== null) { s.points.push([now, value]); samples += 1; }
         }
-      }, {queue_length: 100});
+      }, {queue_length: 1, throttle_rate: THROTTLE_MS});
       subscriptions.push([id, topic]);
     }
   }

@@ -44,7 +44,6 @@ POLL_S = 0.5
 MASTER_TIMEOUT_S = 2.0
 START_TIMEOUT_S = 30.0
 STOP_TIMEOUT_S = 5.0
-IMAGE_RATE = 30
 PR_SET_PDEATHSIG = 1
 
 
@@ -124,7 +123,8 @@ class RosLab:
                 raise RuntimeError("roslab: the page's own master did not start on %s" % self.own_uri)
             time.sleep(0.05)
         turtlesim = roslib.packages.find_node("turtlesim", "turtlesim_node")[0]
-        self.own.append(Child([turtlesim, "_image_rate:=%d" % IMAGE_RATE], env, "turtlesim"))
+        # no ~image rate: the page draws the canvas from ~scene, and ~image renders only for a subscriber
+        self.own.append(Child([turtlesim], env, "turtlesim"))
 
     def stop_own(self) -> None:
         for child in reversed(self.own):

@@ -38,7 +38,7 @@ STUDENT_ROS = ("roscore -p %s > ~/roscore.log 2>&1 & until rostopic list > /dev/
 
 
 def is_red(pixel) -> bool:
-    """Red, give or take the JPEG frames' rounding."""
+    """Red, give or take a few levels."""
     return bool(pixel) and pixel[0] > 200 and pixel[1] < 60 and pixel[2] < 60
 
 
@@ -48,7 +48,7 @@ def test_the_launcher_opens_the_lab_page_which_follows_the_students_master():
 
         def state():
             return browser.execute_script(PAGE_STATE) or {"state": None, "closings": 0, "frames": 0, "pixel": None}
-        assert wait_for(lambda: state()["frames"] >= 10, 60, 0.2), "the page drew no turtlesim frames: %s" % state()
+        assert wait_for(lambda: state()["frames"] >= 1, 60, 0.2), "the page drew no turtlesim canvas: %s" % state()
         first = state()
         assert first["state"] == "open" and browser.title == "The lab in a browser"
         assert first["pixel"][2] > 200 and first["pixel"][0] < 100, first  # turtlesim's blue
@@ -63,7 +63,10 @@ def test_the_launcher_opens_the_lab_page_which_follows_the_students_master():
             assert red, "the page did not draw the student's turtlesim: %s; %s" % (
                 now, term.run("rosnode list 2>&1; tail -n5 ~/roscore.log ~/turtlesim.log")[1])
             assert now["closings"] >= 1  # lab_view started again on the student's master ...
-            assert wait_for(lambda: state()["frames"] >= now["frames"] + 10, 30, 0.2)  # ... and frames flow
+            # ... and draws what the student's turtle does (the page draws only when the canvas changes)
+            code, said = term.run("rosservice call /turtle1/teleport_relative 1.0 0.5")
+            assert code == 0, said
+            assert wait_for(lambda: state()["frames"] > now["frames"], 30, 0.2), state()
             assert wait_for(lambda: browser.execute_script(HEALTH)[0] == "ok", 30, 0.2), browser.execute_script(HEALTH)
 
             # the student's turtlesim killed (SIGKILL: it stays registered, silent), then their master
@@ -83,6 +86,6 @@ def test_the_launcher_opens_the_lab_page_which_follows_the_students_master():
             assert wait_for(lambda: browser.execute_script(HEALTH)[0] == "ok", 90, 0.25), (
                 browser.execute_script(HEALTH), term.run("rosnode list 2>&1; tail -n5 ~/roscore.log")[1])
             assert browser.execute_script(HEALTH)[1] == ""
-            assert wait_for(lambda: state()["frames"] >= back["frames"] + 10 and is_red(state()["pixel"]), 30, 0.2), \
+            assert wait_for(lambda: state()["frames"] > back["frames"] and is_red(state()["pixel"]), 30, 0.2), \
                 state()
             term.run("kill %2; kill -INT %1; wait")

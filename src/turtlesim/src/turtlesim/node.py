@@ -3,18 +3,21 @@
 Interfaces match upstream turtlesim (per turtle: cmd_vel, pose, color_sensor,
 set_pen, teleport_absolute, teleport_relative; global: clear, reset, spawn, kill;
 private params background_r/g/b). Beyond upstream: ~image (the rendered canvas,
-published only while someone subscribes) and ~snapshot (writes a PNG).
+published only while someone subscribes, and only when it changed), ~scene and ~canvas (the
+canvas as drawing commands and a snapshot, for the lab page that draws it itself:
+turtlesim.scene) and ~snapshot (writes a PNG).
 """
 from __future__ import annotations
 
 import os
 import threading
 import time
-from typing import Dict
+from typing import Dict, Optional
 
 import rospy
 from geometry_msgs.msg import Twist
 from sensor_msgs.msg import Image
+from std_msgs.msg import String
 from std_srvs.srv import Empty, EmptyResponse, Trigger, TriggerResponse
 
 from turtlesim.canvas import RGB, Canvas, rgb888_bytes
@@ -22,6 +25,7 @@ from turtlesim.constants import BACKGROUND_PARAMS, CENTRE, DEFAULT_BACKGROUND_RG
 from turtlesim.fanout import TickPublisher
 from turtlesim.frame import TurtleError, TurtleFrame, TurtleUpdate
 from turtlesim.msg import Color, Pose
+from turtlesim.scene import FrameGate, SceneLog, snapshot_json
 from turtlesim.srv import (Kill, KillResponse, SetPen, SetPenResponse, Spawn, SpawnResponse,
                            TeleportAbsolute, TeleportAbsoluteResponse, TeleportRelative,
                            TeleportRelativeResponse)
@@ -29,6 +33,9 @@ from turtlesim.ticker import Ticker
 
 POSE_LAYOUT = "<5f"  # turtlesim/Pose on the wire: x, y, theta, linear_velocity, angular_velocity
 COLOR_LAYOUT = "<3B"  # turtlesim/Color: r, g, b
+SCENE_TICKS = 3  # ~scene carries what changed every 3 ticks (20.8 updates a second at most)
+SCENE_GRACE_S = 10.0  # how long after a ~canvas call lines are recorded for a subscriber still connecting
+SCENE_QUEUE = 50  # updates a slow subscriber may have waiting (one it misses makes the page ask ~canvas)
 
 
 def private_params() -> dict:
@@ -124,6 +131,15 @@ class TurtlesimNode:
         self.interfaces: Dict[str, TurtleInterface] = {}
         self.image_pub = rospy.Publisher("~image", Image, queue_size=1)
         self.image_period = 1.0 / max(float(params.get("image_rate", 10.0)), 0.1)
+        self.frames = FrameGate()
+        self.changes = 0  # counts what changed the picture (a move, a line, a clear, a spawn, a kill)
+        self._last_poses: list = []
+        self.scene = SceneLog()
+        self.scene_pub = rospy.Publisher("~scene", String, queue_size=SCENE_QUEUE)
+        self._ticks = 0
+        # ~scene records lines while someone subscribes, and for a while after a ~canvas call: the
+        # page asks ~canvas while its subscriber still connects, and must get the lines in between.
+        self._scene_asked_until = 0.0
         self.snapshot_dir = os.path.expanduser(params.get(
             "snapshot_dir", os.path.join(os.environ.get("ROS_HOME", "~/.ros"), "turtlesim")))
         self._snapshots = 0
@@ -133,6 +149,7 @@ class TurtlesimNode:
             rospy.Service("spawn", Spawn, self._on_spawn),
             rospy.Service("kill", Kill, self._on_kill),
             rospy.Service("~snapshot", Trigger, self._on_snapshot),
+            rospy.Service("~canvas", Trigger, self._on_canvas),
         ]
         self._add_turtle("", CENTRE, CENTRE, 0.0)
         self.ticker = Ticker(TICK, self.tick, name="turtlesim-tick", on_error=self._on_tick_error)
@@ -172,6 +189,10 @@ class TurtlesimNode:
         with self.lock:
             updates = self.frame.update(TICK, time.monotonic(), self._colour_wanted)
             targets = [(self.interfaces.get(u.name), u) for u in updates]
+            self._ticks += 1
+            scene = self._follow(updates)
+        if scene is not None:
+            self.scene_pub.publish(String(scene))
         for iface, update in targets:
             if update.error is not None:
                 rospy.logerr_throttle(1.0, "turtle [%s] stopped: its update failed: %r" % (update.name, update.error))
@@ -179,6 +200,25 @@ class TurtlesimNode:
                 rospy.logwarn(WALL_WARNING % update.result.clamped_from)
             if iface is not None:
                 iface.publish(update)
+
+    def _follow(self, updates) -> Optional[str]:
+        """What ~image and ~scene need from one tick (under the lock): whether the picture changed,
+        the lines and poses for ~scene, and the ~scene update due now (or None). Nothing at all
+        while nobody watches: a still turtlesim nobody looks at does no more than upstream's."""
+        image_impl = self.image_pub.impl
+        image_watched = image_impl is not None and bool(image_impl.connections)
+        scene_watched = self.scene_pub.get_num_connections() > 0 or time.monotonic() < self._scene_asked_until
+        if not (image_watched or scene_watched):
+            return None
+        poses = [(u.name, u.turtle.x, u.turtle.y, u.turtle.theta, u.turtle.icon) for u in updates]
+        if image_watched and (poses != self._last_poses
+                              or any(u.result.segments and u.turtle.pen.on for u in updates)):
+            self.changes += 1
+            self._last_poses = poses
+        if not scene_watched:
+            return None
+        self.scene.record(((u.turtle.pen, u.result.segments) for u in updates), poses)
+        return self.scene.take() if self._ticks % SCENE_TICKS == 0 else None
 
     def _colour_wanted(self, name: str) -> bool:
         iface = self.interfaces.get(name)
@@ -195,7 +235,9 @@ class TurtlesimNode:
     def _stream_images(self) -> None:
         while not rospy.is_shutdown():
             started = time.monotonic()
-            if self.image_pub.get_num_connections() > 0:
+            impl = self.image_pub.impl
+            subscribers = frozenset(id(c) for c in impl.connections) if impl is not None else frozenset()
+            if self.frames.due(subscribers, self.changes):
                 image = self.render()
                 msg = Image(height=image.height(), width=image.width(), encoding="rgb8",
                             is_bigendian=0, step=image.width() * 3, data=rgb888_bytes(image))
@@ -256,6 +298,8 @@ class TurtlesimNode:
         background = self.background()
         with self.lock:
             self.frame.clear(background)
+            self.scene.clear(background)
+            self.changes += 1
         return EmptyResponse()
 
     def _on_reset(self, _req):
@@ -263,6 +307,8 @@ class TurtlesimNode:
         background = self.background()
         with self.lock:
             removed, first = self.frame.reset(background)
+            self.scene.clear(background)
+            self.changes += 1
             # The new turtle1 keeps the old one's topics and services. Re-advertising them makes
             # every /turtle1/pose subscriber reconnect, and rospy can lose that race (the master's
             # "no publisher" and "publisher back" updates may arrive in either order), leaving a
@@ -272,6 +318,14 @@ class TurtlesimNode:
             iface.shutdown()
         self._attach(first)
         return EmptyResponse()
+
+    def _on_canvas(self, _req):
+        with self.lock:
+            self._scene_asked_until = time.monotonic() + SCENE_GRACE_S
+            paths = self.frame.canvas.path.copy()
+            state = self.scene.state()
+            icons = [self.frame.canvas.icons.image(i) for i in range(len(self.frame.canvas.icons))]
+        return TriggerResponse(success=True, message=snapshot_json(state, paths, icons))
 
     def _on_snapshot(self, _req):
         try:

@@ -1,5 +1,8 @@
 #!/usr/bin/env python3
-"""~image streams the rendered canvas only while subscribed; ~snapshot writes a PNG of it."""
+"""~image streams the rendered canvas only while subscribed; ~snapshot writes a PNG of it; ~scene
+and ~canvas give the lab page the canvas as drawing commands and a snapshot (turtlesim.scene)."""
+import base64
+import json
 import os
 import unittest
 
@@ -11,9 +14,10 @@ import rostest
 from PyQt5.QtGui import QImage
 from PyQt5.QtWidgets import QApplication
 from sensor_msgs.msg import Image
+from std_msgs.msg import String
 from std_srvs.srv import Trigger
 
-from turtlesim.constants import DEFAULT_BACKGROUND_RGB
+from turtlesim.constants import DEFAULT_BACKGROUND_RGB, METER_PX, WORLD_SIZE
 from turtlesim.srv import SetPen, TeleportAbsolute
 from course_checks.recorders import TopicRecorder
 
@@ -49,6 +53,25 @@ class TurtlesimImage(unittest.TestCase):
         image = TopicRecorder("/turtlesim/image", Image)
         self.assertIsNotNone(image.wait(timeout=10))
         image.unregister()
+
+    def test_scene_tells_the_lines_and_canvas_gives_the_whole_picture(self):
+        scene = TopicRecorder("/turtlesim/scene", String)
+        teleport = rospy.ServiceProxy("/turtle1/teleport_absolute", TeleportAbsolute)
+        rospy.ServiceProxy("/turtle1/set_pen", SetPen)(0, 255, 0, 4, 0)
+        teleport(2.0, 8.0, 0.0)
+        teleport(6.0, 8.0, 0.0)  # a green line 4 m long at y = 8 m
+        green = scene.wait(lambda m: any(s[:4] == [0, 255, 0, 4] and s[4] == 90.0 and s[6] == 270.0
+                                         for s in json.loads(m.data)["strokes"]), timeout=10)
+        self.assertIsNotNone(green, "the green line should come as a stroke on ~scene: %s" % scene.messages[-3:])
+        update = json.loads(green.data)
+        self.assertEqual([t[0] for t in update["turtles"]], ["turtle1"])
+        snapshot = json.loads(rospy.ServiceProxy("/turtlesim/canvas", Trigger)().message)
+        self.assertGreaterEqual(snapshot["seq"], update["seq"])
+        self.assertEqual(snapshot["run"], update["run"])
+        paths = QImage.fromData(base64.b64decode(snapshot["paths"]), "PNG")
+        colour = paths.pixelColor(180, round((WORLD_SIZE - 8.0) * METER_PX))
+        self.assertEqual((colour.red(), colour.green(), colour.blue()), (0, 255, 0))
+        scene.unregister()
 
     @staticmethod
     def _remove(path: str) -> None:

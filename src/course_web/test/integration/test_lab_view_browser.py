@@ -1,7 +1,8 @@
 """The page in a real browser: headless Debian chromium, driven by selenium through chromedriver.
 
 It loads; its canvas follows turtlesim (pixels change when the turtle moves, a red pen draws a red
-line: the page draws them from turtlesim's ~scene); arrow keys pressed
+line: the page draws them from turtlesim's ~scene); a hidden page takes no updates and is whole
+again when shown; arrow keys pressed
 in the page move the turtle; the console shows turtlesim's warning and the level filter hides
 INFO; the plot draws /turtle1/pose/x:y (both lines, in rqt_plot's colours), says why a path
 cannot be plotted, and drops a late answer to an older path; the node graph shows turtlesim and
@@ -19,6 +20,7 @@ import pytest
 from course_checks.artifacts import artifact_path
 from course_testkit.browser import require_browser
 from course_checks.nodes import find_executable
+from course_testkit.master import system_state
 from course_testkit.pictures import load_png
 from course_checks.waiting import wait_for
 
@@ -110,6 +112,36 @@ def test_the_canvas_follows_the_turtle(browser, lab, client_class, open_page):
     call(lab, client_class, "/turtle1/teleport_absolute", {"x": 8.0, "y": 2.0, "theta": 0.0})
     assert wait_for(lambda: canvas_colour_count(browser, (255, 0, 0)) > 1000, TIMEOUT_S), \
         "no red line of 6 m (270 px, 5 px wide) on the canvas: %d red pixels" % canvas_colour_count(browser, (255, 0, 0))
+    call(lab, client_class, "/turtle1/set_pen", {"r": 179, "g": 184, "b": 255, "width": 3, "off": 0})
+
+
+# Out of sight and back, as a browser says when the tab changes (document.hidden, visibilitychange).
+SET_HIDDEN = """
+Object.defineProperty(document, 'hidden', {value: arguments[0], configurable: true});
+document.dispatchEvent(new Event('visibilitychange'));
+"""
+
+
+def lab_view_subscribes(lab, topic):
+    return "/lab_view" in dict(system_state(lab.master.uri)[1]).get(topic, [])
+
+
+def test_a_hidden_page_takes_no_canvas_updates_nor_plot_samples(browser, lab, client_class, open_page):
+    open_page(browser, lab)
+    streams = ("/turtlesim/scene", "/turtle1/pose")  # the canvas's updates, the plot's samples
+    assert wait_for(lambda: all(lab_view_subscribes(lab, t) for t in streams), TIMEOUT_S)
+    call(lab, client_class, "/turtle1/set_pen", {"r": 0, "g": 0, "b": 0, "width": 0, "off": 1})
+    call(lab, client_class, "/turtle1/teleport_absolute", {"x": 2.0, "y": 9.0, "theta": 0.0})
+    browser.execute_script(SET_HIDDEN, True)
+    assert wait_for(lambda: not any(lab_view_subscribes(lab, t) for t in streams), TIMEOUT_S), \
+        "lab_view still takes %s for a hidden page" % [t for t in streams if lab_view_subscribes(lab, t)]
+    call(lab, client_class, "/turtle1/set_pen", {"r": 0, "g": 255, "b": 0, "width": 5, "off": 0})
+    call(lab, client_class, "/turtle1/teleport_absolute", {"x": 9.0, "y": 9.0, "theta": 0.0})  # 7 m, while hidden
+    browser.execute_script(SET_HIDDEN, False)
+    assert wait_for(lambda: all(lab_view_subscribes(lab, t) for t in streams), TIMEOUT_S)
+    # back in sight, the canvas is whole again: the green line drawn while it was hidden is on it
+    assert wait_for(lambda: canvas_colour_count(browser, (0, 255, 0)) > 1000, TIMEOUT_S), \
+        "the line drawn while the page was hidden is missing: %d green pixels" % canvas_colour_count(browser, (0, 255, 0))
     call(lab, client_class, "/turtle1/set_pen", {"r": 179, "g": 184, "b": 255, "width": 3, "off": 0})
 
 

@@ -23,3 +23,9 @@ export function every(periodMs, refresh, onError) {
   tick();
   return setInterval(tick, periodMs);
 }
+
+// Calls `onHidden` when the page goes out of sight (another tab, a minimised window) and `onShown`
+// when it comes back: a stream nobody sees is not worth its server's and its turtlesim's work.
+export function whenHidden(onHidden, onShown) {
+  document.addEventListener('visibilitychange', () => (document.hidden ? onHidden() : onShown()));
+}

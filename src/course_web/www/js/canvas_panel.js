@@ -4,8 +4,9 @@
 // update (std_msgs/String, JSON: a clear colour, the lines drawn with their pen's colour and width,
 // where each turtle is), about 30 a second while something moves and none while nothing does.
 // An update that skips a number (one was lost) or comes from another turtlesim process (`run`:
-// it restarted) makes the panel ask ~canvas again.
+// it restarted) makes the panel ask ~canvas again. While the page is hidden it takes no updates.
 // canvas.dataset.frames counts the pictures drawn (the tests and the benchmark read it).
+import {whenHidden} from './api.js';
 import {frameCounter} from './image_view.js';
 
 const SCENE_TYPE = 'std_msgs/String';
@@ -89,7 +90,7 @@ export function mount(bridge, root) {
       const reply = await bridge.callService(asked + '/canvas', {});
       const snapshot = JSON.parse(reply.message);
       const [picture, ...images] = await Promise.all([pngImage(snapshot.paths), ...snapshot.icons.map(pngImage)]);
-      if (asked !== node) return;
+      if (asked !== node || !subscription) return;
       for (const canvasElement of [canvas, paths]) {
         canvasElement.width = snapshot.width;
         canvasElement.height = snapshot.height;
@@ -108,14 +109,21 @@ export function mount(bridge, root) {
       }
       show();
     } catch (error) {
-      setTimeout(() => { if (asked === node && seq === null) askCanvas(); }, RETRY_MS);  // turtlesim not up yet
+      setTimeout(() => { if (subscription && asked === node && seq === null) askCanvas(); }, RETRY_MS);  // turtlesim not up yet
     } finally {
       asking = false;
     }
   }
 
-  function follow(name) {
+  function unfollow() {
     if (subscription) bridge.unsubscribe(subscription.id, subscription.topic);
+    subscription = null;
+    seq = null;
+    waiting = [];
+  }
+
+  function follow(name) {
+    unfollow();
     node = name.replace(/\/+$/, '');
     seq = null;
     waiting = [];
@@ -125,6 +133,7 @@ export function mount(bridge, root) {
   }
 
   nodeInput.addEventListener('change', () => follow(nodeInput.value.trim()));
-  bridge.onState((state) => { if (state === 'open') askCanvas(); });  // a new server may follow another master
+  bridge.onState((state) => { if (state === 'open' && subscription) askCanvas(); });  // a new server may follow another master
+  whenHidden(unfollow, () => follow(nodeInput.value.trim()));  // out of sight: no updates; back: a snapshot
   follow(nodeInput.value.trim());
 }

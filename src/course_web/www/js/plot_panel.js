@@ -1,7 +1,7 @@
 // A live plot of numeric topic fields, typed as for rqt_plot (`/turtle1/pose/x:y`, several
 // paths separated by spaces or commas). The server resolves the paths (/api/plot); the page
 // subscribes to each topic and plots the last 20 s against the time each message arrived.
-import {ask} from './api.js';
+import {ask, whenHidden} from './api.js';
 
 const SPAN_S = 20;
 // At most 20 samples a second per topic, the newest (the server drops the rest): a 20 s plot shows no more,
@@ -144,4 +144,6 @@ export function mount(bridge, root) {
   root.querySelector('#plot-clear').addEventListener('click', () => { for (const s of series) s.points = []; });
   setInterval(render, 100);
   if (input.value.trim()) start(input.value.trim());
+  // Out of sight, nothing is plotted (the server stops sending); back, the plot starts again.
+  whenHidden(() => { latest += 1; stop(); }, () => { if (input.value.trim()) start(input.value.trim()); });
 }

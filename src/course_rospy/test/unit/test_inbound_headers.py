@@ -2,12 +2,14 @@
 bytes replayed and nothing after it read; a connection closed mid-header, one without a header in
 time, one announcing too long a header and the oldest past the bound are closed, with one
 (throttled) warning; waiting costs no wake-ups of its thread."""
+import io
 import socket
 import struct
 import threading
 from typing import List
 
 import pytest
+from rosgraph.network import read_ros_handshake_header, write_ros_handshake_header
 
 from course_checks.waiting import wait_for
 from course_rospy.inbound_headers import ReplaySocket, WaitingHeaders
@@ -72,6 +74,17 @@ def test_a_complete_header_is_handed_on_replayed_and_nothing_after_it_is_read(no
     sock.sendall(b"answer")
     assert client.recv(100) == b"answer"
     assert node.headers.waiting() == 0 and node.warnings == []
+
+
+def test_rospys_header_read_gets_the_header_and_leaves_what_follows(node):
+    """What rospy's handler does first with the socket it is handed (rosgraph's own function)."""
+    client = node.connection()
+    header = {"callerid": "/caller", "topic": "/t", "message_definition": "string data\n" * 1000}
+    write_ros_handshake_header(client, header)
+    client.sendall(b"next")
+    assert node.handed_on.wait(DEADLINE_S)
+    assert read_ros_handshake_header(node.handed[0], io.BytesIO(), 4096) == header
+    assert node.handed[0].recv(100) == b"next"
 
 
 @pytest.mark.parametrize("sent", [0, 2, 6])

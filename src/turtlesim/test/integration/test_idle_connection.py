@@ -1,4 +1,4 @@
-"""course_rospy.inbound_threads in turtlesim: one idle TCP connection to a node's TCPROS port blocks
+"""course_rospy.inbound_headers in turtlesim: one idle TCP connection to a node's TCPROS port blocks
 (control: `rostopic pub`, a plain rospy node), but not turtlesim's, which installs it: with the
 idle connection held, a new subscriber still gets /turtle1/pose and /spawn still answers."""
 import socket
@@ -37,7 +37,7 @@ def publisher_address(master, node, topic, process):
 
 
 def test_an_idle_connection_blocks_a_plain_rospy_node(master):
-    """The control: without inbound_threads, the next subscriber waits for the idle one."""
+    """The control: without inbound_headers, the next subscriber waits for the idle one."""
     pub = master.start(["rostopic", "pub", "-r", "10", "/control", "std_msgs/String", "data: x",
                         "__name:=control_pub"], "control_pub")
     address = publisher_address(master, "/control_pub", "/control", pub)

@@ -140,10 +140,12 @@ export function mount(bridge, root) {
     root.dataset.samples = String(samples);
   }
 
-  form.addEventListener('submit', (event) => { event.preventDefault(); start(input.value.trim()); });
+  // It plots what the student asks for (the form's `plot`), not the suggestion the field opens with:
+  // a plot nobody asked for would stream /turtle1/pose to every page at 20 samples a second.
+  let wanted = '';
+  form.addEventListener('submit', (event) => { event.preventDefault(); wanted = input.value.trim(); start(wanted); });
   root.querySelector('#plot-clear').addEventListener('click', () => { for (const s of series) s.points = []; });
   setInterval(render, 100);
-  if (input.value.trim()) start(input.value.trim());
   // Out of sight, nothing is plotted (the server stops sending); back, the plot starts again.
-  whenHidden(() => { latest += 1; stop(); }, () => { if (input.value.trim()) start(input.value.trim()); });
+  whenHidden(() => { latest += 1; stop(); }, () => { if (wanted) start(wanted); });
 }

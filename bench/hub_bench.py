@@ -398,7 +398,7 @@ def closing(students: List[Student]) -> contextlib.ExitStack:
 
 def steady(opts: argparse.Namespace) -> int:
     """Each image's student through the four states, measured side by side (module docstring)."""
-    images = [("after", opts.image)] + ([("before", opts.before_image)] if opts.before_image else [])
+    images = [("after", opts.image), ("before", opts.before_image)] if opts.before_image else [("image", opts.image)]
     students: List[Student] = []
     with scratch_hubs([(image, [label[0] + "01"]) for label, image in images]) as hubs, closing(students) as stack:
         print("hub_bench --steady: %s; settle: CPU of 2 s windows within 1 point of a core or 15%% "
@@ -542,18 +542,19 @@ def sweep(opts: argparse.Namespace) -> int:
             per_student = statistics.mean(w.memory_mib for w in cost)
             cpu = statistics.mean(w.cpu_pct for w in cost)
             ok = slowest >= MIN_RATE_HZ and max(hub_home[1], server[1]) <= MAX_LATENCY_S
-            if ok:
+            if ok and all(r[3] for r in rows):  # the last N before the first miss
                 best = n
-            row = ("N=%2d  pose rate slowest %.1f Hz (longest gap %.0f ms)  steady memory/student %.0f MiB (total %.0f)  "
+            row = ("N=%2d  pose rate slowest %.1f Hz, median %.1f, %d under %.0f (longest gap %.0f ms)  steady memory/student %.0f MiB (total %.0f)  "
                    "steady CPU/student %.1f%% (most %.1f%%; hub %.1f%%)  page messages/s slowest %.0f  "
                    "/hub/home median %.0f ms worst %.0f ms  server API median %.0f ms worst %.0f ms  spawn %.1f s  "
-                   "load %s  %s" % (n, slowest, gap, per_student, sum(w.memory_mib for w in cost), cpu,
+                   "load %s  %s" % (n, slowest, statistics.median(r for r, _ in measured),
+                                    sum(r < MIN_RATE_HZ for r, _ in measured), MIN_RATE_HZ, gap, per_student, sum(w.memory_mib for w in cost), cpu,
                                     max(w.cpu_pct for w in cost), cost[0].hub_cpu_pct, min(page_rates),
                                     1000 * hub_home[0], 1000 * hub_home[1], 1000 * server[0], 1000 * server[1],
                                     students[-1].spawn_s, cost[0].load, "ok" if ok else "OVER"))
             rows.append((n, per_student, slowest, ok, cpu))
             print(row, flush=True)
-            if not ok:
+            if not ok and not opts.keep_going:
                 break
         print("hub_bench: largest N with every turtlesim >= %.0f Hz and the hub within %.0f s: %d (this machine: "
               "2 cores shared with other work; load average %s)" % (MIN_RATE_HZ, MAX_LATENCY_S, best, loadavg()))
@@ -579,6 +580,9 @@ def main() -> int:
     parser.add_argument("--steady", action="store_true",
                         help="one student per image through the four states, by process, instead of the sweep")
     parser.add_argument("--before-image", help="with --steady: a second image measured side by side")
+    parser.add_argument("--keep-going", action="store_true",
+                        help="the sweep goes on to --max past a level that misses a bar (the largest N printed is "
+                             "still the last before the first miss)")
     parser.add_argument("--record", type=float, default=20.0,
                         help="seconds the lab page's traffic is recorded in chromium (the sweep)")
     parser.add_argument("--peak", type=int, default=0, help="K students starting at once, instead of the sweep")

@@ -46,6 +46,7 @@ def etc_dir_for_run(env: Mapping[str, str], folder: str) -> Optional[str]:
     params = [p for p in tree.iter("param") if p.get("command")]
     shutil.rmtree(folder, ignore_errors=True)
     os.makedirs(folder)
+    os.chmod(folder, 0o755)  # the student's roslaunch reads it too, as the sandbox user
     for index, param in enumerate(params):
         output = command_output(param.get("command"), env.get("PATH", os.defpath))
         if output is None:
@@ -56,6 +57,8 @@ def etc_dir_for_run(env: Mapping[str, str], folder: str) -> Optional[str]:
         del param.attrib["command"]
         param.set("textfile", textfile)
     tree.write(os.path.join(folder, "roscore.xml"), encoding="unicode")
+    for name in os.listdir(folder):  # the files written above: no link is there yet
+        os.chmod(os.path.join(folder, name), 0o644)
     try:
         for entry in os.listdir(etc):
             if entry != "roscore.xml":

@@ -85,6 +85,12 @@ def _pump(stream: IO[bytes], sink: CappedText) -> None:
         sink.add(chunk.decode("utf-8", errors="replace"))
 
 
+def run_etc_dir(results_dir: str) -> str:
+    """The run's own etc/ros (core_params.etc_dir_for_run): roslaunch reads it in every process
+    of the run, the student's sandboxed ones too (the grader shows it to them read-only)."""
+    return os.path.join(results_dir, "etc_ros")
+
+
 def rostest_env(base: Optional[dict], results_dir: str, token: str) -> dict:
     """The environment of one run: own ROS_HOME/ROS_LOG_DIR, loopback, no display, unbuffered,
     and two start-up costs cut: roscore.xml's rosversion commands answered from a file
@@ -97,7 +103,7 @@ def rostest_env(base: Optional[dict], results_dir: str, token: str) -> dict:
     env.update(ROS_HOME=os.path.join(results_dir, "ros_home"), ROS_LOG_DIR=os.path.join(results_dir, "log"),
                ROS_HOSTNAME="localhost", QT_QPA_PLATFORM="offscreen", PYTHONUNBUFFERED="1")
     env.setdefault("SETUPTOOLS_USE_DISTUTILS", "stdlib")
-    etc = etc_dir_for_run(env, os.path.join(results_dir, "etc_ros"))
+    etc = etc_dir_for_run(env, run_etc_dir(results_dir))
     if etc is not None:
         env["ROS_ETC_DIR"] = etc
     return isolation.token_env(env, token)

@@ -64,3 +64,17 @@ def test_roslaunch_loads_the_same_core_parameters(tmp_path, monkeypatch):
     run = etc_dir_for_run(dict(os.environ), str(tmp_path / "run"))
     assert run is not None
     assert core_params(run) == real
+
+
+def test_the_folder_is_readable_by_the_sandbox_user_whatever_the_umask(etc, tmp_path):
+    """A student's roslaunch (another user) reads it too; the real files linked keep their modes."""
+    before = (etc / "python_logging.conf").stat().st_mode
+    old = os.umask(0o077)
+    try:
+        run = Path(etc_dir_for_run({"ROS_ETC_DIR": str(etc), "PATH": os.environ["PATH"]}, str(tmp_path / "run")))
+    finally:
+        os.umask(old)
+    assert run.stat().st_mode & 0o777 == 0o755
+    assert {p.name: p.stat().st_mode & 0o777 for p in run.iterdir() if not p.is_symlink()} == {
+        "roscore.xml": 0o644, "param-0.txt": 0o644}
+    assert (etc / "python_logging.conf").stat().st_mode == before

@@ -35,7 +35,7 @@ from course_milestones import causes, course_file, unbuilt
 from course_milestones.scripts import script_problems
 from course_checks import junit
 from course_checks.artifacts import ENV_VAR as ARTIFACTS_VAR
-from course_checks.rostest_runner import run_rostest
+from course_checks.rostest_runner import run_etc_dir, run_rostest
 
 from course_sandbox import leftovers, procs
 from course_sandbox.policy import ENV_VAR as POLICY_VAR, Limits
@@ -360,7 +360,7 @@ class Grader:
             self.sandbox.give(home)
             report = os.path.join(run_dir, "sandbox.json")
             policy = self.sandbox.policy([p for p in (ws, home) if p], home, student_env, report,
-                                         disk_folder=self._work_dir(sub.name))
+                                         disk_folder=self._work_dir(sub.name), readable=[run_etc_dir(run_dir)])
             policy_path = policy.write(os.path.join(run_dir, "sandbox_policy.json"))
             run_env = dict(env, **{ARTIFACTS_VAR: artifacts, POLICY_VAR: policy_path})
             package, test_file, args = rostest_of(m, run_dir)

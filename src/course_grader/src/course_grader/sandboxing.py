@@ -84,9 +84,11 @@ class SandboxPlan:
         return path
 
     def policy(self, writable: Sequence[str], home: str, student_env: Optional[Dict[str, str]] = None,
-               report: str = "", disk_folder: str = "") -> Policy:
-        """A sandbox's policy; `disk_folder`: the student's work folder, bounded on disk in total."""
-        return Policy(self.level, self.user, normalised(writable), list(self.hidden), [self.course_root],
+               report: str = "", disk_folder: str = "", readable: Sequence[str] = ()) -> Policy:
+        """A sandbox's policy; `disk_folder`: the student's work folder, bounded on disk in total;
+        `readable`: folders shown read-only besides the course (a run's own etc/ros)."""
+        return Policy(self.level, self.user, normalised(writable), list(self.hidden),
+                      [self.course_root] + normalised(readable),
                       home, student_env, self.limits, report=report, gid=self.gid, disk_folder=disk_folder)
 
 

@@ -102,6 +102,16 @@ def test_a_student_process_never_gets_the_trusted_variables():
     assert env["TURTLEBOT3_MODEL"] == "burger", "what the check sets on purpose reaches the student's process"
 
 
+def test_a_student_process_reads_the_runs_etc_folder():
+    """The run's etc/ros (roscore.xml without commands) reaches the student's roslaunch, never
+    the overlay's own value: its roslaunch loads the same parameters without running rosversion."""
+    policy = Policy(levels.FULL, home="/w/run/student", student_env={"PATH": "/overlay/bin", "ROS_ETC_DIR": "/mine"})
+    given_env = dict(os.environ, ROS_ETC_DIR="/w/run/etc_ros")
+    assert student_env(policy, given_env, started_with=given_env)["ROS_ETC_DIR"] == "/w/run/etc_ros"
+    given_env.pop("ROS_ETC_DIR")
+    assert "ROS_ETC_DIR" not in student_env(policy, given_env, started_with=given_env)
+
+
 def test_limits_are_noted_and_the_run_ended_past_memory_or_processes():
     policy = Policy(levels.FULL, limits=Limits(processes=100, memory_bytes=1000, cpu_seconds=10))
     hits = LimitHits()

@@ -111,7 +111,17 @@ def checkout_of(rev: str) -> Path:
     a git worktree of it under /tmp (made and built on first use, reused after)."""
     given = Path(rev)
     if (given / "solutions_ws" / "devel" / "setup.bash").is_file():
-        return given
+        tree = given
+    else:
+        tree = worktree_of(rev)
+    venv = ROOT / ".venv"  # the Python packages git does not hold (mujoco for the simulator)
+    if venv.is_dir() and not (tree / ".venv").exists():
+        (tree / ".venv").symlink_to(venv)
+    return tree
+
+
+def worktree_of(rev: str) -> Path:
+    """A git worktree of `rev` under /tmp, its workspaces built (made on first use, reused after)."""
     commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", rev], check=True,
                             stdout=subprocess.PIPE, text=True).stdout.strip()
     tree = Path(tempfile.gettempdir()) / ("grade-phases-%s" % commit)

@@ -81,6 +81,7 @@ from course_hub.names import container as container_name
 from course_checks.waiting import wait_for
 from course_testkit.browser import chromium
 from course_testkit.hub import HubUser, LocalHub
+from course_testkit.jupyter import JupyterError
 
 from hub_cost import MIB, Cgroup, Meter, Window, container_pid, loadavg, tree_cpu_s, settle, windows
 
@@ -256,7 +257,13 @@ class Student:
             pass
 
     def pose_rate(self, window: float) -> Tuple[float, float]:
-        code, said = self.term.run("python3 ~/pose_rate.py %g" % window, timeout=window + 120)
+        try:
+            code, said = self.term.run("python3 ~/pose_rate.py %g" % window, timeout=window + 120)
+        except JupyterError as err:  # a terminal idle for minutes was closed on the server's side: a new one
+            if "closed" not in str(err):
+                raise
+            self.term = self.user.terminal()
+            code, said = self.term.run("python3 ~/pose_rate.py %g" % window, timeout=window + 120)
         found = re.search(r"RATE ([\d.]+) GAP ([\d.]+)", said)
         if not found:
             raise RuntimeError("%s: %s" % (self.user.name, said[-500:]))

@@ -20,6 +20,7 @@ import json
 import math
 import os
 import shlex
+import shutil
 import subprocess
 from pathlib import Path
 from typing import Dict, List, NamedTuple, Optional, Tuple
@@ -192,5 +193,18 @@ def test_the_install_space_sets_the_same_include_path(tmp_path):
     assert env["CPLUS_INCLUDE_PATH"].split(":")[0] == str(folder)
     assert (folder / "boost" / "bind" / "bind.hpp").is_file() and not folder.is_symlink()
     compiled, said = finish(start_compile("probe", "<ros/ros.h>", SPELLINGS["boost::bind, _1 unqualified"],
+                                          env, tmp_path, []))
+    assert compiled, said
+
+
+def test_two_course_workspaces_on_the_include_path_still_compile(overlay, tmp_path):
+    """Two course checkouts sourced one after the other put two copies of noetic_include on
+    CPLUS_INCLUDE_PATH: the first copy's #include_next reaches the second, which must still pass
+    the include on to Boost's own (a guard before it left boost::placeholders undeclared)."""
+    first = overlay.env["CPLUS_INCLUDE_PATH"].split(":")[0]
+    second = tmp_path / "other_checkout" / "noetic_include"
+    shutil.copytree(first, second)
+    env = dict(overlay.env, CPLUS_INCLUDE_PATH="%s:%s" % (first, second))
+    compiled, said = finish(start_compile("two", "<ros/ros.h>", SPELLINGS["boost::bind, _1 unqualified"],
                                           env, tmp_path, []))
     assert compiled, said

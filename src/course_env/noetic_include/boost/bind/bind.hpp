@@ -8,10 +8,14 @@
 // folder on CPLUS_INCLUDE_PATH, so this file is found for <boost/bind/bind.hpp>: it includes
 // Boost's own and adds the same using-directive <boost/bind.hpp> has. As with <boost/bind.hpp>,
 // defining BOOST_BIND_NO_PLACEHOLDERS leaves the global namespace alone.
+//
+// The #include_next stands before the guard: with two course workspaces on CPLUS_INCLUDE_PATH (two
+// copies of this file), the first copy's #include_next finds the second, which must still pass the
+// include on to Boost's own rather than stop at its already-defined guard.
+#include_next <boost/bind/bind.hpp>
+
 #ifndef COURSE_ENV_NOETIC_BOOST_BIND_BIND_HPP
 #define COURSE_ENV_NOETIC_BOOST_BIND_BIND_HPP
-
-#include_next <boost/bind/bind.hpp>
 
 #ifndef BOOST_BIND_NO_PLACEHOLDERS
 using namespace boost::placeholders;

@@ -24,6 +24,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Dict, Iterable, List, Optional, Tuple
 
+from course_sandbox import procs
+
 CGROUP_ROOT = Path("/sys/fs/cgroup")
 TICK_S = 1.0 / os.sysconf("SC_CLK_TCK")
 MIB = 2 ** 20
@@ -134,26 +136,8 @@ def tree_cpu_s(root: int) -> float:
     """CPU seconds of the living processes descended from `root`, itself included (the hub's
     start: JupyterHub, configurable-http-proxy, podman's API service; not the containers, whose
     conmon leaves the tree)."""
-    parent: Dict[int, int] = {}
-    cpu: Dict[int, float] = {}
-    for entry in os.listdir("/proc"):
-        if not entry.isdigit():
-            continue
-        try:
-            stat = Path("/proc/%s/stat" % entry).read_text()
-        except OSError:
-            continue
-        fields = stat[stat.rindex(")") + 2:].split()
-        parent[int(entry)] = int(fields[1])
-        cpu[int(entry)] = (int(fields[11]) + int(fields[12])) * TICK_S
-    total = 0.0
-    for pid, used in cpu.items():
-        up = pid
-        while up > 1 and up != root:
-            up = parent.get(up, 0)
-        if up == root:
-            total += used
-    return total
+    uses = (procs.usage(pid) for pid in [root] + procs.descendants(root))
+    return sum(use.cpu_seconds for use in uses if use is not None)
 
 
 @dataclass

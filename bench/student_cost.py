@@ -30,6 +30,7 @@ from typing import Dict, List, Optional, Tuple
 
 from course_checks.isolation import free_port
 from course_checks.waiting import wait_for
+from course_sandbox import procs
 from course_testkit.browser import chromium
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -65,10 +66,11 @@ def built_worktree(rev: str) -> Path:
     return path
 
 
-def cpu_ticks(pid: int) -> int:
-    with open("/proc/%d/stat" % pid) as f:
-        fields = f.read().rsplit(")", 1)[1].split()
-    return int(fields[11]) + int(fields[12])
+def cpu_seconds(pid: int) -> float:
+    use = procs.usage(pid)
+    if use is None:
+        raise ProcessLookupError(pid)
+    return use.cpu_seconds
 
 
 def rss_anon_kib(pid: int) -> int:
@@ -77,25 +79,6 @@ def rss_anon_kib(pid: int) -> int:
             if line.startswith("RssAnon:"):
                 return int(line.split()[1])
     return 0
-
-
-def descendants(pid: int) -> List[int]:
-    """pid and every process below it."""
-    children: Dict[int, List[int]] = {}
-    for entry in os.listdir("/proc"):
-        if entry.isdigit():
-            try:
-                with open("/proc/%s/stat" % entry) as f:
-                    ppid = int(f.read().rsplit(")", 1)[1].split()[1])
-            except OSError:
-                continue
-            children.setdefault(ppid, []).append(int(entry))
-    found, todo = [], [pid]
-    while todo:
-        p = todo.pop()
-        found.append(p)
-        todo.extend(children.get(p, []))
-    return found
 
 
 def label(pid: int) -> str:
@@ -151,7 +134,7 @@ class Lab:
         self.start("rostopic", "pub", "-r", "10", "/turtle1/cmd_vel", "geometry_msgs/Twist", TWIST)
 
     def pids(self) -> List[int]:
-        return [p for proc in self.procs if proc.poll() is None for p in descendants(proc.pid)]
+        return [p for proc in self.procs if proc.poll() is None for p in [proc.pid] + procs.descendants(proc.pid)]
 
     def __exit__(self, *_exc) -> None:
         for proc in reversed(self.procs):
@@ -173,11 +156,10 @@ BROWSER = "chromium"
 def measure(pids: List[int], window: float, browser: Tuple[int, ...] = ()) -> Tuple[Dict[str, Tuple[float, float]], str]:
     """{label: (% of a core, MiB)} over `window` seconds (processes of one label summed, the
     `browser` pids as one), and the load average at its end."""
-    hz = os.sysconf("SC_CLK_TCK")
     start = {}
     for pid in pids:
         try:
-            start[pid] = cpu_ticks(pid)
+            start[pid] = cpu_seconds(pid)
         except OSError:
             pass
     t0 = time.monotonic()
@@ -186,9 +168,9 @@ def measure(pids: List[int], window: float, browser: Tuple[int, ...] = ()) -> Tu
     with open("/proc/loadavg") as f:
         load = " ".join(f.read().split()[:3])
     figures: Dict[str, Tuple[float, float]] = {}
-    for pid, ticks in start.items():
+    for pid, used in start.items():
         try:
-            cpu = 100.0 * (cpu_ticks(pid) - ticks) / hz / elapsed
+            cpu = 100.0 * (cpu_seconds(pid) - used) / elapsed
             mib = rss_anon_kib(pid) / 1024.0
         except OSError:
             continue

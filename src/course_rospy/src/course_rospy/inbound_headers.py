@@ -93,11 +93,10 @@ class _Waiting:
 
     def wanted(self) -> int:
         """How many more bytes complete the header (the length first, then what it announces)."""
-        if len(self.received) < _LENGTH.size:
-            return _LENGTH.size - len(self.received)
-        return _LENGTH.size + _LENGTH.unpack_from(self.received)[0] - len(self.received)
+        return _LENGTH.size + self.announced() - len(self.received)
 
     def announced(self) -> int:
+        """The header's length as its first 4 bytes give it (0 until they have come)."""
         return _LENGTH.unpack_from(self.received)[0] if len(self.received) >= _LENGTH.size else 0
 
 

@@ -40,7 +40,10 @@ from course_workbench.startup import DEFAULT_MASTER_URI, TOKEN_VAR
 
 CALLER_ID = "/workbench_roslab"
 LAB_VIEW_NAME = "workbench_lab_view"  # not /lab_view: the student may run their own
-POLL_S = 0.5
+POLL_S = 0.5  # while the student has no master: their `roscore` is taken up within half a second
+# Once lab_view follows the student's master, a look every 2 s is enough to see it restarted; each
+# look is an XML-RPC call costing roslab and the master about 1.6 ms of CPU together.
+SETTLED_POLL_S = 2.0
 MASTER_TIMEOUT_S = 2.0
 START_TIMEOUT_S = 30.0
 STOP_TIMEOUT_S = 5.0
@@ -169,12 +172,17 @@ class RosLab:
             # the student's master is down: lab_view stays (its page says so), or comes back
             self.start_lab_view(self.student_uri, -1)
 
+    def poll_period(self) -> float:
+        """How long until the next look at the student's master: longer once lab_view follows it."""
+        settled = self.following is not None and self.following[0] == self.student_uri and self.following[1] != -1
+        return SETTLED_POLL_S if settled and self.lab_view_running() else POLL_S
+
     def run(self) -> None:
         parent = os.getppid()
         try:
             while not self.stopping.is_set():
                 self.step()
-                self.stopping.wait(POLL_S)
+                self.stopping.wait(self.poll_period())
                 if os.getppid() != parent:  # JupyterLab is gone, however it went
                     break
         finally:

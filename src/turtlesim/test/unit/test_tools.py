@@ -44,3 +44,12 @@ def test_ticker_keeps_its_schedule():
     ticker.join(1.0)
     span = ticks[24] - ticks[0]
     assert span == pytest.approx(0.24, abs=0.1)
+
+
+def test_ticker_stop_ends_a_long_wait_at_once_and_may_come_twice():
+    ticker = Ticker(30.0, lambda: None)
+    ticker.start()
+    ticker.stop()
+    ticker.stop()  # a second stop (another thread, a shutdown hook) is harmless
+    ticker.join(2.0)
+    assert not ticker.is_alive()

@@ -48,7 +48,7 @@ def www_folder(given: str) -> str:
 
 async def serve(args: argparse.Namespace, token: Optional[str]) -> None:
     bridge = RosBridge()
-    settings = Settings(bridge, www_folder(args.www), token, args.max_message_bytes, RosMaster())
+    settings = Settings(bridge, www_folder(args.www), token, args.max_message_bytes, RosMaster(), rospy.logwarn)
     server = application(settings).listen(args.port, address=args.address)
     stop = asyncio.Event()
     loop = asyncio.get_running_loop()
@@ -62,6 +62,8 @@ async def serve(args: argparse.Namespace, token: Optional[str]) -> None:
     server.stop()
     for socket in list(settings.sockets):
         socket.close(1001, "the lab_view server is stopping")
+    if settings.status is not None:
+        settings.status.stop()
     bridge.shutdown()
 
 

@@ -1,11 +1,13 @@
 """What the page's graph, topic and plot panels ask the server, as JSON-ready dicts, and what the
 page's header says in words about the ROS side (/api/health).
 
-The page refreshes its node graph and its topic lists by GETting /api/graph and /api/topics, and
+The page is told its node graph, its topic lists and the header's words on its websocket
+(course_web.lab_status) and other clients GET them (/api/graph, /api/topics, /api/health); the page
 turns an rqt_plot path (`/turtle1/pose/x:y`) into the fields to read with /api/plot, so the
 browser never parses ROS types itself. The answers are built here from what the master says
-(passed in, so this is tested without one) with course_introspection, the same model the
-rqt_graph and rqt_plot stand-ins use; the page then subscribes through the rosbridge socket.
+(passed in: the real one, the cache of course_web.master_cache, or a fake in tests) with
+course_introspection, the same model the rqt_graph and rqt_plot stand-ins use; the page then
+subscribes through the rosbridge socket.
 """
 from __future__ import annotations
 
@@ -88,20 +90,29 @@ def plot_fields(master: Master, spec: Optional[str]) -> Json:
     return {"fields": fields}
 
 
-def health(master: Master, canvas_topic: Optional[str]) -> Json:
+def canvas_topic(name: Optional[str]) -> str:
+    """The topic a health question is about, as a global name (empty: the canvas's default)."""
+    return "/" + (name or DEFAULT_CANVAS_TOPIC).strip().lstrip("/")
+
+
+def publishers_of(state: Sequence[Sequence], topic: str) -> List[str]:
+    """The nodes a getSystemState answer has publishing `topic`, sorted."""
+    return sorted(next((row[1] for row in state[0] if row[0] == topic), None) or [])
+
+
+def health(master: Master, canvas_topic_name: Optional[str]) -> Json:
     """In words, what keeps the page from showing the lab: the master does not answer (the student
     stopped `roscore`), or nothing publishes the canvas's topic (turtlesim is not running).
     `state` is "ok", "no-master" or "no-publisher"; `says` is the sentence the page shows."""
-    topic = "/" + (canvas_topic or DEFAULT_CANVAS_TOPIC).strip().lstrip("/")
+    topic = canvas_topic(canvas_topic_name)
     try:
-        publishers = {row[0]: row[1] for row in master.system_state()[0]}
+        registered = publishers_of(master.system_state(), topic)
     except ApiError as err:
         if err.status != 503:
             raise
         return {"state": "no-master", "topic": topic,
                 "says": "%s%s. Start it again (roscore): the page follows it when it is back."
                         % (str(err)[:1].upper(), str(err)[1:].rstrip("."))}
-    registered = sorted(publishers.get(topic) or [])
     alive = [node for node in registered if master.node_answers(node)]
     if not alive:
         silent = " (%s is still registered, but does not answer)" % ", ".join(registered) if registered else ""

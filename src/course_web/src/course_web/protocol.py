@@ -8,13 +8,21 @@ unsubscribe, call_service (answered by service_response with values and result).
 wrong with one request (bad JSON, an unknown op, topic, type or service, a field of the wrong
 type, a message over the size limit) becomes a status message with level "error" and the
 request's id, to this client only.
+
+One op is the page's own, beyond rosbridge v2: lab_status ({"op": "lab_status", "health": topic,
+"graph": true, "debug": false, "topics": true}; each field optional, a request replaces the
+client's previous one, and one asking nothing ends it). The server then sends {"op":
+"lab_status", <part>: <answer>} frames, each part at once and again only when it changes (see
+course_web.lab_status), each part in a queue of one (only the newest answer matters). A rosbridge
+client (roslibpy, roslibjs) never sends it, so it never receives any.
 """
 from __future__ import annotations
 
 import json
 import threading
-from typing import Any, Callable, Dict, Hashable, Optional, Set, Tuple
+from typing import Any, Callable, Dict, Hashable, Optional, Protocol, Set, Tuple
 
+from course_web.lab_status import Deliver as StatusDeliver, Wants
 from course_web.outbox import Outbox, Payload
 
 DEFAULT_MAX_MESSAGE_BYTES = 10 * 1024 * 1024
@@ -22,6 +30,7 @@ MAX_CALLS_IN_FLIGHT = 8
 """Service calls one client may have waiting for their replies; more are refused, so a client
 calling a service that never answers holds up its own calls only."""
 IMAGE_COMPRESSIONS = ("jpeg", "png")
+MAX_HEALTH_TOPIC_CHARS = 1000
 PLAIN_COMPRESSIONS = ("none", "", None)
 
 Deliver = Callable[[Payload], None]
@@ -56,6 +65,15 @@ class Bridge:
         """Start the call; done(result, values) later, from any thread."""
         raise NotImplementedError
 
+
+class StatusSource(Protocol):
+    """What a Session needs for the lab_status op (course_web.lab_status.LabStatus is one)."""
+
+    def watch(self, client: Hashable, wants: Wants, deliver: StatusDeliver) -> None:
+        """Tell `client` what it wants, now and on each change, by deliver(part, frame)."""
+
+    def unwatch(self, client: Hashable) -> None:
+        """Tell `client` nothing more."""
 
 
 def encode(message: Dict[str, Any]) -> str:
@@ -107,9 +125,12 @@ class Session:
     """One websocket client's protocol state; see the module docstring."""
 
     def __init__(self, client: Hashable, bridge: Bridge, outbox: Outbox,
-                 max_message_bytes: int = DEFAULT_MAX_MESSAGE_BYTES, wake: Callable[[], None] = lambda: None) -> None:
+                 max_message_bytes: int = DEFAULT_MAX_MESSAGE_BYTES, wake: Callable[[], None] = lambda: None,
+                 status: Optional[StatusSource] = None) -> None:
         self.client = client
         self.bridge = bridge
+        self.status = status
+        self.status_parts: Set[str] = set()  # the lab_status parts this client is told
         self.outbox = outbox
         self.max_message_bytes = max_message_bytes
         self.wake = wake
@@ -266,13 +287,43 @@ class Session:
             settle()
             raise
 
+    def _lab_status(self, request: Dict[str, Any], request_id: Optional[str]) -> None:
+        health = _field(request, "health", str)
+        if health is not None and len(health) > MAX_HEALTH_TOPIC_CHARS:
+            raise RequestError("lab_status: \"health\" is a topic name of %d characters (at most %d)"
+                               % (len(health), MAX_HEALTH_TOPIC_CHARS))
+        wants = Wants(health, _field(request, "graph", bool, False), _field(request, "debug", bool, False),
+                      _field(request, "topics", bool, False))
+        if self.status is None:
+            raise RequestError("lab_status: this server has no ROS master to watch")
+        parts = {part for part, _ in wants.parts()}
+        for part in self.status_parts - parts:
+            self.outbox.close_lane(self._status_lane(part))
+        for part in parts - self.status_parts:
+            self.outbox.open_lane(self._status_lane(part), 1)
+        self.status_parts = parts
+        if not parts:
+            self.status.unwatch(self.client)
+            return
+
+        def deliver(part: str, text: str) -> None:
+            if self.outbox.put(self._status_lane(part), text):
+                self.wake()
+        self.status.watch(self.client, wants, deliver)
+
+    def _status_lane(self, part: str) -> Tuple[Hashable, str, str]:
+        return (self.client, "lab_status", part)
+
     HANDLERS = {"advertise": _advertise, "unadvertise": _unadvertise, "publish": _publish,
-                "subscribe": _subscribe, "unsubscribe": _unsubscribe, "call_service": _call_service}
+                "subscribe": _subscribe, "unsubscribe": _unsubscribe, "call_service": _call_service,
+                "lab_status": _lab_status}
 
     def close(self) -> None:
         """The client left: drop its subscriptions and publishers."""
         with self._lock:
             self.closed = True
+            if self.status is not None and self.status_parts:
+                self.status.unwatch(self.client)
             for key in list(self.subscriptions):
                 self._drop_subscription(key)
             for topic in list(self.advertised):

@@ -28,7 +28,8 @@ from course_web.protocol import Bridge, Deliver, RequestError, ServiceDone, publ
 
 IMAGE_TYPE = "sensor_msgs/Image"
 CALLER_ID = "/course_web"
-NODE_TIMEOUT_S = 1.0  # a node's XML-RPC answer to getPid (/api/health asks the canvas's publishers)
+NODE_TIMEOUT_S = 1.0  # a node's XML-RPC answer to getPid (the page's health asks the canvas's publishers)
+MASTER_TIMEOUT_S = 5.0
 SUBSCRIBER_QUEUE = 10
 
 
@@ -231,13 +232,24 @@ class RosBridge(Bridge):
 
 
 class RosMaster:
-    """course_web.introspect's Master, asked over XML-RPC (a proxy per call: they are not thread-safe)."""
+    """course_web.introspect's Master, asked over XML-RPC (a proxy per call: they are not thread-safe),
+    each call given up after MASTER_TIMEOUT_S (a master stopped with SIGSTOP must not hang the page's
+    watch). A node's address is asked of the master once and kept while the node answers there."""
 
-    def _ask(self, question: str) -> Any:
+    def __init__(self) -> None:
+        self._lock = threading.Lock()
+        self._addresses: Dict[str, str] = {}  # node -> its XML-RPC URI, as the master last said
+
+    def _ask(self, question: str, *args: Any) -> Any:
+        uri = rosgraph.get_master_uri()
         try:
-            return getattr(rosgraph.Master(CALLER_ID), question)()
-        except (rosgraph.MasterException, OSError) as err:
-            raise ApiError("the ROS master at %s does not answer: %s" % (rosgraph.get_master_uri(), err), 503)
+            proxy = xmlrpc.client.ServerProxy(uri, transport=TimedTransport(MASTER_TIMEOUT_S))
+            code, message, value = getattr(proxy, question)(CALLER_ID, *args)
+        except (OSError, xmlrpc.client.Error, http.client.HTTPException, ValueError, TypeError) as err:
+            raise ApiError("the ROS master at %s does not answer: %s" % (uri, err), 503)
+        if code != 1:
+            raise ApiError("the ROS master at %s refused %s: %s" % (uri, question, message), 503)
+        return value
 
     def system_state(self) -> Any:
         return self._ask("getSystemState")
@@ -247,11 +259,30 @@ class RosMaster:
 
     def node_answers(self, name: str) -> bool:
         """Whether the node answers at the address its master has for it: a node killed by a signal
-        rospy does not catch (SIGKILL; SIGHUP, a closed terminal's) stays registered, silent."""
+        rospy does not catch (SIGKILL; SIGHUP, a closed terminal's) stays registered, silent. The
+        address kept from before is tried first; when nothing answers there, the master is asked
+        again (the node may have started again elsewhere under the same name)."""
+        with self._lock:
+            known = self._addresses.get(name)
+        if known is not None and self._pid_answers(known):
+            return True
         try:
-            uri = rosgraph.Master(CALLER_ID).lookupNode(name)
+            uri = self._ask("lookupNode", name)
+        except ApiError:
+            return False
+        answers = uri != known and self._pid_answers(uri)
+        with self._lock:
+            if answers:
+                self._addresses[name] = uri
+            else:
+                self._addresses.pop(name, None)
+        return answers
+
+    @staticmethod
+    def _pid_answers(uri: str) -> bool:
+        try:
             code, _message, _pid = xmlrpc.client.ServerProxy(uri, transport=TimedTransport(NODE_TIMEOUT_S)).getPid(
                 CALLER_ID)
-        except (rosgraph.MasterException, OSError, xmlrpc.client.Error, http.client.HTTPException, ValueError):
+        except (OSError, xmlrpc.client.Error, http.client.HTTPException, ValueError):
             return False
         return code == 1

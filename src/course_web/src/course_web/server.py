@@ -7,6 +7,9 @@ queues; the ROS callbacks just append and wake the sender. Requests are handled 
 pool, one at a time per socket (tornado awaits on_message), because advertise and subscribe talk
 to the master and must not stall the loop. The websocket answers at "/" (where roslibpy and
 roslibjs connect, like rosbridge on its port) and at "/websocket"; a plain GET of "/" is the page.
+The page's header, graph and camera lists come on its socket too (the lab_status op: one watch
+of the master for every client, course_web.lab_status); the /api/... questions stay for other
+clients and answer from the same watch's cache when it is recent.
 """
 from __future__ import annotations
 
@@ -25,6 +28,7 @@ import tornado.websocket
 from tornado.ioloop import IOLoop
 
 from course_web import access, introspect
+from course_web.lab_status import LabStatus
 from course_web.outbox import Outbox
 from course_web.protocol import DEFAULT_MAX_MESSAGE_BYTES, Bridge, Session
 
@@ -36,13 +40,14 @@ POLICY_VIOLATION = 1008
 
 
 class Settings:
-    """What the handlers share: the bridge, the token, the limits, the page's folder."""
+    """What the handlers share: the bridge, the token, the limits, the page's folder, and the one
+    watch of the master (none without a master)."""
 
     def __init__(self, bridge: Bridge, www: str, token: Optional[str] = None,
                  max_message_bytes: int = DEFAULT_MAX_MESSAGE_BYTES,
-                 master: Optional[introspect.Master] = None) -> None:
+                 master: Optional[introspect.Master] = None, warn: Optional[Callable[[str], None]] = None) -> None:
         self.bridge, self.www, self.token, self.max_message_bytes = bridge, www, token, max_message_bytes
-        self.master = master
+        self.status = LabStatus(master, warn=warn) if master is not None else None
         self.requests = concurrent.futures.ThreadPoolExecutor(REQUEST_WORKERS, thread_name_prefix="lab_view-req")
         self.clients = itertools.count(1)
         self.sockets = set()
@@ -86,8 +91,9 @@ class StaticFiles(TokenGuard, tornado.web.StaticFileHandler):
 class Api(TokenGuard, tornado.web.RequestHandler):
     """GET /api/graph, /api/topics, /api/plot?path=..., /api/health?topic=...: JSON for the page's panels.
 
-    The master is asked on the request pool (XML-RPC blocks); a failure is a JSON {"error": ...}
-    with a 4xx/5xx status, never an exception out of the handler."""
+    They are answered on the request pool (the master may have to be asked, and XML-RPC blocks),
+    from the cache the pages' watch shares (course_web.lab_status) when it is recent; a failure is a
+    JSON {"error": ...} with a 4xx/5xx status, never an exception out of the handler."""
 
     QUESTIONS: Dict[str, Callable[[introspect.Master, Dict[str, str]], Dict[str, Any]]] = {
         "graph": lambda master, params: introspect.graph(master, params["debug"] == "true"),
@@ -104,17 +110,18 @@ class Api(TokenGuard, tornado.web.RequestHandler):
             return
         self.set_header("Content-Type", "application/json; charset=utf-8")
         self.set_header("Cache-Control", "no-store")
-        master = self.settings_.master
+        status = self.settings_.status
         try:
             try:  # read here, on the loop's thread; tornado refuses arguments that are not UTF-8
                 params = {name: self.get_query_argument(name, "") for name in ("debug", "path", "topic")}
             except tornado.web.HTTPError as err:
                 raise introspect.ApiError("the request's arguments are not valid UTF-8 text (%s)"
                                           % (err.log_message or err.reason or err.status_code))
-            if master is None:
+            if status is None:
                 raise introspect.ApiError("this server has no ROS master to ask", 503)
-            answer = await IOLoop.current().run_in_executor(self.settings_.requests, self.QUESTIONS[question],
-                                                            master, params)
+            ask = self.QUESTIONS[question]
+            answer = await IOLoop.current().run_in_executor(self.settings_.requests, status.answer,
+                                                            lambda master: ask(master, params))
         except introspect.ApiError as err:
             self.set_status(err.status)
             answer = {"error": str(err)}
@@ -150,7 +157,7 @@ class BridgeSocket(TokenGuard, tornado.websocket.WebSocketHandler):
             self.close(POLICY_VIOLATION, TOKEN_REFUSAL)
             return
         self.session = Session(next(self.settings_.clients), self.settings_.bridge, self.outbox,
-                               self.settings_.max_message_bytes, self.wake)
+                               self.settings_.max_message_bytes, self.wake, self.settings_.status)
         self.settings_.sockets.add(self)
         self.loop.spawn_callback(self.send_loop)
 

@@ -1,5 +1,6 @@
 """A live lab for the integration tests: a private master, turtlesim (canvas at 30 fps) and
-lab_view on a free port; and a small websocket client to talk to it.
+lab_view on a free port (or on the master through a relay that counts lab_view's calls); and a
+small websocket client to talk to it.
 
 The test process itself never becomes a ROS node: it sees ROS only through the server, the
 way a browser does, so any number of these tests can share one pytest process.
@@ -7,11 +8,16 @@ way a browser does, so any number of these tests can share one pytest process.
 from __future__ import annotations
 
 import asyncio
+import collections
 import json
+import socketserver
+import threading
 import time
 import urllib.error
 import urllib.request
-from typing import Any, Callable, Dict, List, Optional
+import xmlrpc.client
+import xmlrpc.server
+from typing import Any, Callable, Counter, Dict, List, Optional
 
 import pytest
 from tornado.websocket import WebSocketClientConnection, websocket_connect
@@ -39,21 +45,26 @@ def http_status(url: str, headers: Optional[Dict[str, str]] = None) -> Optional[
         return None
 
 
-class Lab:
-    """The running lab: its master, turtlesim and one lab_view."""
+def turtlesim_command() -> List[str]:
+    return [find_executable("turtlesim", "turtlesim_node"), "_image_rate:=%d" % IMAGE_RATE]
 
-    def __init__(self, master: PrivateMaster) -> None:
+
+class Lab:
+    """The running lab: its master, turtlesim and one lab_view (`env`: lab_view's environment,
+    instead of the master's)."""
+
+    def __init__(self, master: PrivateMaster, env: Optional[Dict[str, str]] = None) -> None:
         self.master = master
-        self.turtlesim = master.start([find_executable("turtlesim", "turtlesim_node"),
-                                       "_image_rate:=%d" % IMAGE_RATE], "turtlesim")
+        self.turtlesim = master.start(turtlesim_command(), "turtlesim")
         self.port = free_port()
         self.message_limit = TEST_MESSAGE_LIMIT
-        self.server = self.start_server(self.port)
+        self.server = self.start_server(self.port, env=env)
 
-    def start_server(self, port: int, *extra: str) -> NodeProcess:
+    def start_server(self, port: int, *extra: str, env: Optional[Dict[str, str]] = None) -> NodeProcess:
+        """lab_view on `port` (`env`: instead of the master's environment)."""
         command = [find_executable("course_web", "lab_view"), "--port", str(port),
                    "--max-message-bytes", str(TEST_MESSAGE_LIMIT), *extra]
-        node = self.master.start(command, "lab_view-%d" % port)
+        node = self.master.start(command, "lab_view-%d" % port, env)
         if not wait_for(lambda: "lab_view: open" in node.output() or not node.running(), STARTUP_TIMEOUT_S) \
                 or not node.running():
             raise AssertionError("lab_view did not start:\n%s" % node.output()[-3000:])
@@ -73,6 +84,62 @@ class Lab:
 def lab():
     with PrivateMaster() as master:
         yield Lab(master)
+
+
+@pytest.fixture
+def lab_on():
+    """Lab(master): for a test that runs a master of its own."""
+    return Lab
+
+
+@pytest.fixture
+def turtlesim():
+    """The command that starts turtlesim as the lab does."""
+    return turtlesim_command()
+
+
+class _ThreadingXmlRpcServer(socketserver.ThreadingMixIn, xmlrpc.server.SimpleXMLRPCServer):
+    daemon_threads = True
+
+
+class CountingRelay:
+    """The master's XML-RPC API on a port of its own, each call passed on and counted by method:
+    a node pointed at it (its ROS_MASTER_URI) shows the test everything it asks the master."""
+
+    def __init__(self, master_uri: str) -> None:
+        self.master_uri = master_uri
+        self.lock = threading.Lock()
+        self.calls: Counter[str] = collections.Counter()
+        self.server = _ThreadingXmlRpcServer(("127.0.0.1", 0), logRequests=False)
+        self.server.register_instance(self)
+        self.uri = "http://127.0.0.1:%d/" % self.server.server_address[1]
+        threading.Thread(target=self.server.serve_forever, name="counting-relay", daemon=True).start()
+
+    def _dispatch(self, method: str, params: tuple) -> Any:
+        with self.lock:
+            self.calls[method] += 1
+        return getattr(xmlrpc.client.ServerProxy(self.master_uri), method)(*params)
+
+    def counted(self) -> Counter[str]:
+        with self.lock:
+            return collections.Counter(self.calls)
+
+    def close(self) -> None:
+        self.server.shutdown()
+        self.server.server_close()
+
+
+@pytest.fixture(scope="module")
+def counted_lab():
+    """A lab whose lab_view asks its master through a CountingRelay (`lab.relay`)."""
+    with PrivateMaster() as master:
+        relay = CountingRelay(master.uri)
+        try:
+            counted = Lab(master, env=dict(master.env, ROS_MASTER_URI=relay.uri))
+            counted.relay = relay
+            yield counted
+        finally:
+            relay.close()
 
 
 class SimulatorLab(Lab):

@@ -6,7 +6,8 @@ again when shown; arrow keys pressed
 in the page move the turtle; the console shows turtlesim's warning and the level filter hides
 INFO; the plot draws /turtle1/pose/x:y (both lines, in rqt_plot's colours), says why a path
 cannot be plotted, and drops a late answer to an older path; the node graph shows turtlesim and
-the page's own node and follows nodes that come and go; the TF tree nests a static and a moving
+the page's own node and follows nodes that come and go (test_lab_view_steady: what the page asks
+while nothing changes, and the header's words); the TF tree nests a static and a moving
 frame. Screenshots are saved to the artifact folder and checked for content. The simulator's
 panels are in test_lab_view_simulator.
 """
@@ -289,6 +290,7 @@ def graph_edges(driver):
 
 def test_the_graph_shows_the_nodes_and_refreshes(browser, lab, open_page):
     open_page(browser, lab)
+    browser.execute_script("document.getElementById('graph-svg').scrollIntoView()")  # told only while on screen
     assert wait_for(lambda: {"/turtlesim", "/turtle1/cmd_vel", "/turtle1/pose", "/lab_view"} <= graph_names(browser),
                     TIMEOUT_S), graph_names(browser)
     # The page's teleop publishes cmd_vel through lab_view: publisher -> topic -> subscriber.
@@ -303,7 +305,6 @@ def test_the_graph_shows_the_nodes_and_refreshes(browser, lab, open_page):
     finally:
         lab.master.stop_node(extra)
     assert wait_for(lambda: "/pose_relay" not in graph_names(browser), TIMEOUT_S), "a stopped node stayed"
-    browser.execute_script("document.getElementById('graph-svg').scrollIntoView()")
     picture = element_png(browser, "graph-svg", "lab_view_graph")
     ink = int((picture.astype(int).sum(axis=2) < 500).sum())  # the outlines, arrows and names
     assert ink > 1500 and picture.shape[1] > 400, "the graph picture is nearly empty: %d dark pixels, %s" % (

@@ -1,6 +1,7 @@
 """lab_view against turtlesim: the rosbridge ops work, bad requests get errors to their sender
 only, 20 viewers are served fairly while one stalls, a latched message reaches a late client,
-the page's JSON questions (/api/...) answer or say why, and the token guards a wider address."""
+the page's JSON questions (/api/...) answer or say why, the page's own lab_status op tells the
+client that asks and no other, and the token guards a wider address."""
 from __future__ import annotations
 
 import asyncio
@@ -199,6 +200,36 @@ def test_the_api_answers_the_pages_questions(lab):
     assert {"from": "/turtlesim", "to": "/turtle1/pose"} in answer["edges"]
     status, answer = api(lab, "plot", path="/turtle1/pose/x:theta")
     assert status == 200 and [f["label"] for f in answer["fields"]] == ["/turtle1/pose/x", "/turtle1/pose/theta"]
+
+
+def test_lab_status_tells_what_a_client_asks_and_nothing_to_others(lab, client_class, error_check):
+    def is_status(message):
+        return message.get("op") == "lab_status"
+
+    async def scenario():
+        page = await client_class.connect(lab.ws_url())
+        other = await client_class.connect(lab.ws_url())  # a rosbridge client: never asks
+        other.send(op="subscribe", topic="/turtle1/pose")
+        page.send(op="lab_status", health="/turtlesim/scene", graph=True, topics=True)
+        told = {}
+        while len(told) < 3:
+            message = await page.expect(is_status, what="the lab's status")
+            told.update((part, answer) for part, answer in message.items() if part != "op")
+        assert told["health"]["state"] == "ok" and told["health"]["publishers"] == ["/turtlesim"], told["health"]
+        assert {"from": "/turtlesim", "to": "/turtle1/pose"} in told["graph"]["edges"]
+        assert {"name": "/turtle1/pose", "type": "turtlesim/Pose"} in told["topics"]["topics"]
+        page.send(op="lab_status", id="bad", graph="yes")
+        assert '"graph" must be true or false' in (await page.expect(error_check))["msg"]
+        page.send(op="lab_status")  # nothing more
+        seen = [await other.receive(0.2) for _ in range(20)]
+        assert seen and not any(m and is_status(m) for m in seen)
+        page.close()
+        other.close()
+    asyncio.run(scenario())
+    status, answer = api(lab, "health", topic="/turtlesim/scene")
+    assert status == 200 and answer["state"] == "ok", answer
+    status, answer = api(lab, "health", topic="/nobody/scene")
+    assert status == 200 and answer["state"] == "no-publisher", answer
 
 
 def test_bad_api_questions_say_why_and_the_server_stays_up(lab):

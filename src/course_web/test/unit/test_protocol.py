@@ -195,3 +195,58 @@ def test_a_client_waits_for_its_own_slow_calls_only():
     assert [(m["op"], m["id"]) for m in replies(mine)] == [("service_response", "c0")]
     mine.handle(json.dumps({"op": "call_service", "id": "again", "service": "/slow"}))
     assert len(slow.pending) == protocol.MAX_CALLS_IN_FLIGHT + 2 and not replies(mine)
+
+
+class FakeStatus:
+    """course_web.lab_status's side of the lab_status op: records what each client wants."""
+
+    def __init__(self) -> None:
+        self.watching = {}
+
+    def watch(self, client, wants, deliver):
+        self.watching[client] = (wants, deliver)
+        for part, _ in wants.parts():
+            deliver(part, json.dumps({"op": "lab_status", part: {"told": part}}))
+
+    def unwatch(self, client):
+        self.watching.pop(client, None)
+
+
+def test_lab_status_is_told_in_a_queue_of_one_per_part_and_ends_with_a_request_for_nothing():
+    status = FakeStatus()
+    session = Session("c1", FakeBridge(), Outbox(), status=status)
+    session.handle(json.dumps({"op": "lab_status", "health": "/turtlesim/scene", "graph": True, "debug": True}))
+    wants, deliver = status.watching["c1"]
+    assert (wants.health, wants.graph, wants.debug, wants.topics) == ("/turtlesim/scene", True, True, False)
+    for number in range(5):  # the graph changes five times before the client reads: it gets the newest
+        deliver("graph", json.dumps({"op": "lab_status", "graph": {"n": number}}))
+    told = replies(session)
+    assert {"op": "lab_status", "health": {"told": "health"}} in told
+    assert [m["graph"] for m in told if "graph" in m] == [{"n": 4}]
+    session.handle(json.dumps({"op": "lab_status", "health": "/turtlesim/scene"}))  # the graph scrolled away
+    deliver = status.watching["c1"][1]
+    deliver("graph", "a late graph")
+    assert [m for m in replies(session) if "graph" in m] == []
+    session.handle(json.dumps({"op": "lab_status"}))
+    assert "c1" not in status.watching and not replies(session)
+    session.handle(json.dumps({"op": "lab_status", "topics": True}))
+    session.close()
+    assert "c1" not in status.watching
+
+
+@pytest.mark.parametrize("request_, complaint", [
+    ({"graph": "yes"}, '"graph" must be true or false'),
+    ({"health": 5}, '"health" must be a string'),
+    ({"health": "/t" * 600}, "at most 1000"),
+    ({"topics": 1}, '"topics" must be true or false'),
+])
+def test_bad_lab_status_requests_say_why(request_, complaint):
+    status = FakeStatus()
+    session = Session("c1", FakeBridge(), Outbox(), status=status)
+    session.handle(json.dumps(dict(request_, op="lab_status", id="ls")))
+    assert complaint in only_error(session, "ls") and not status.watching
+
+
+def test_lab_status_without_a_master_says_so(session):
+    session.handle(json.dumps({"op": "lab_status", "health": ""}))
+    assert "no ROS master to watch" in only_error(session)

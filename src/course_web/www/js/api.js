@@ -1,4 +1,5 @@
-// The server's JSON questions (/api/graph, /api/topics, /api/plot): answers, or an Error
+// The server's JSON questions (the page asks only /api/plot, when the student asks for a plot;
+// what changes by itself comes on the websocket, see bridge.js's watchLab): answers, or an Error
 // carrying the server's one-line reason.
 export async function ask(question, params = {}) {
   const query = new URLSearchParams(params);
@@ -10,18 +11,6 @@ export async function ask(question, params = {}) {
   const answer = await reply.json().catch(() => ({error: 'the server answered ' + reply.status}));
   if (!reply.ok || answer.error) throw new Error(answer.error || ('the server answered ' + reply.status));
   return answer;
-}
-
-// Calls `refresh` now and every `periodMs` while the page is visible; errors go to `onError`.
-export function every(periodMs, refresh, onError) {
-  let busy = false;
-  async function tick() {
-    if (busy || document.hidden) return;
-    busy = true;
-    try { await refresh(); } catch (error) { onError(error); } finally { busy = false; }
-  }
-  tick();
-  return setInterval(tick, periodMs);
 }
 
 // Calls `onHidden` when the page goes out of sight (another tab, a minimised window) and `onShown`

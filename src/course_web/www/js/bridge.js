@@ -3,6 +3,10 @@
 // When the socket closes (the server restarted, as behind JupyterLab when the page moves to
 // another master), it opens a new one after a pause and subscribes and advertises again; a
 // refused token (1008) is final.
+// The page's own op, lab_status: the panels say what they want to be told about the ROS side
+// (watchLab: the health of a topic, the node graph, the topic list) and the server sends each
+// part when it is known and again only when it changes; nothing is polled. While the page is out
+// of sight (setLabPaused), it asks for nothing; back in sight, the server answers at once.
 const RETRY_FIRST_MS = 500;
 const RETRY_MAX_MS = 5000;
 const POLICY_VIOLATION = 1008;
@@ -19,6 +23,9 @@ export class Bridge {
     this.stateListeners = [];
     this.pending = [];
     this.retryMs = RETRY_FIRST_MS;
+    this.labWatches = new Set();      // {part, option, onValue}
+    this.labPaused = false;
+    this.labAsked = '{}';             // the wants last sent, as text
     this.open();
   }
 
@@ -81,6 +88,8 @@ export class Bridge {
       }
     } else if (message.op === 'status') {
       for (const listener of this.statusListeners) listener(message);
+    } else if (message.op === 'lab_status') {
+      for (const watch of this.labWatches) if (watch.part in message) watch.onValue(message[watch.part]);
     }
   }
 
@@ -123,6 +132,38 @@ export class Bridge {
     if (this.standing.delete('advertise:' + topic)) this.send({op: 'unadvertise', topic});
   }
   publish(topic, msg) { this.send({op: 'publish', topic, msg}); }
+
+  // Be told `part` ('health': option is the topic; 'graph': option {debug}; 'topics') by
+  // onValue(answer), now and on each change; stop() ends it.
+  watchLab(part, onValue, option = true) {
+    const watch = {part, onValue, option};
+    this.labWatches.add(watch);
+    this.askLab();
+    return {
+      set: (newOption) => { watch.option = newOption; this.askLab(); },
+      stop: () => { if (this.labWatches.delete(watch)) this.askLab(); },
+    };
+  }
+
+  setLabPaused(paused) {
+    this.labPaused = paused;
+    this.askLab();
+  }
+
+  // The wants of every watch as one lab_status request, sent when it differs from the last one
+  // (and on each new socket, as a standing message; asking nothing ends the server's watch).
+  askLab() {
+    const wants = {};
+    for (const watch of this.labPaused ? [] : this.labWatches) {
+      if (watch.part === 'health') wants.health = watch.option;
+      if (watch.part === 'graph') { wants.graph = true; wants.debug = wants.debug || Boolean(watch.option.debug); }
+      if (watch.part === 'topics') wants.topics = true;
+    }
+    const text = JSON.stringify(wants);
+    if (text === this.labAsked) return;
+    this.labAsked = text;
+    this.sendStanding('lab_status', Object.assign({op: 'lab_status'}, wants));
+  }
 
   callService(service, args) {
     const id = this.newId('call_service:' + service);

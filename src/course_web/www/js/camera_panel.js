@@ -1,6 +1,6 @@
-// Any camera: a sensor_msgs/Image topic picked from those the master knows (refreshed every
-// 3 s), drawn like the turtlesim canvas. The free camera has its own panel (3-D view).
-import {ask, every} from './api.js';
+// Any camera: a sensor_msgs/Image topic picked from those the master knows (the server sends the
+// list, the lab_status op's "topics", when it changes), drawn like the turtlesim canvas. The free
+// camera has its own panel (3-D view).
 import {imageView} from './image_view.js';
 
 const IMAGE_TYPE = 'sensor_msgs/Image';
@@ -18,8 +18,9 @@ export function mount(bridge, root) {
     root.dataset.topic = topic || '';
   }
 
-  async function refresh() {
-    const {topics} = await ask('topics');
+  function refresh(answer) {
+    if (answer.error) { note.textContent = answer.error; return; }
+    const {topics} = answer;
     const cameras = topics.filter((t) => t.type === IMAGE_TYPE).map((t) => t.name);
     const current = select.value;
     const listed = [...select.options].map((o) => o.value);
@@ -38,5 +39,5 @@ export function mount(bridge, root) {
   }
 
   select.addEventListener('change', () => follow(select.value));
-  every(3000, refresh, (error) => { note.textContent = error.message; });
+  bridge.watchLab('topics', refresh);
 }

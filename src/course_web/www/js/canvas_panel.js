@@ -10,7 +10,8 @@ import {whenHidden} from './api.js';
 import {frameCounter} from './image_view.js';
 
 const SCENE_TYPE = 'std_msgs/String';
-const RETRY_MS = 1000;
+const RETRY_FIRST_MS = 1000;  // turtlesim not up: ask ~canvas again after 1 s, 2 s, then every 4 s,
+const RETRY_MAX_MS = 4000;    // and at once when an update shows it is back
 
 function pngImage(base64) {
   const bytes = Uint8Array.from(atob(base64), (c) => c.charCodeAt(0));
@@ -33,6 +34,8 @@ export function mount(bridge, root) {
   let subscription = null;
   let node = '';
   let queued = false;
+  let retryMs = RETRY_FIRST_MS;
+  let retryTimer = null;
 
   function compose() {
     queued = false;
@@ -73,7 +76,11 @@ export function mount(bridge, root) {
 
   function onUpdate(msg) {
     const update = JSON.parse(msg.data);
-    if (seq === null) { waiting.push(update); return; }
+    if (seq === null) {
+      waiting.push(update);
+      if (retryTimer) { clearTimeout(retryTimer); retryTimer = null; askCanvas(); }  // it is back
+      return;
+    }
     if (update.run !== run) { askCanvas(); return; }  // another turtlesim (restarted)
     if (update.seq <= seq) return;  // already in the snapshot
     if (update.seq !== seq + 1) { askCanvas(); return; }  // one was lost: start again from a snapshot
@@ -108,8 +115,14 @@ export function mount(bridge, root) {
         apply(update);
       }
       show();
+      retryMs = RETRY_FIRST_MS;
     } catch (error) {
-      setTimeout(() => { if (subscription && asked === node && seq === null) askCanvas(); }, RETRY_MS);  // turtlesim not up yet
+      clearTimeout(retryTimer);
+      retryTimer = setTimeout(() => {  // turtlesim not up yet
+        retryTimer = null;
+        if (subscription && asked === node && seq === null) askCanvas();
+      }, retryMs);
+      retryMs = Math.min(2 * retryMs, RETRY_MAX_MS);
     } finally {
       asking = false;
     }
@@ -125,6 +138,9 @@ export function mount(bridge, root) {
   function follow(name) {
     unfollow();
     node = name.replace(/\/+$/, '');
+    clearTimeout(retryTimer);
+    retryTimer = null;
+    retryMs = RETRY_FIRST_MS;
     seq = null;
     waiting = [];
     const topic = node + '/scene';

@@ -1,6 +1,6 @@
 // The node graph (rqt_graph's default view): nodes as ellipses, topics as boxes, publisher ->
-// topic -> subscriber, laid out left to right in layers; refreshed from /api/graph every 2 s.
-import {ask, every} from './api.js';
+// topic -> subscriber, laid out left to right in layers; the server sends it (the lab_status op's
+// "graph") while the panel is on screen, and again whenever it changes.
 
 const SVG = 'http://www.w3.org/2000/svg';
 const CHAR_W = 7.5;
@@ -112,15 +112,22 @@ export function mount(bridge, root) {
   const debug = root.querySelector('#graph-debug');
   const summary = root.querySelector('#graph-summary');
   let shown = '';
-  async function refresh() {
-    const graph = await ask('graph', debug.checked ? {debug: 'true'} : {});
-    const text = JSON.stringify(graph);
-    summary.textContent = graph.nodes.length + ' nodes, ' + graph.topics.length + ' topics';
+  let watch = null;
+  function show(graph) {
     root.dataset.refreshed = String(Number(root.dataset.refreshed || 0) + 1);
+    if (graph.error) { summary.textContent = graph.error; return; }
+    summary.textContent = graph.nodes.length + ' nodes, ' + graph.topics.length + ' topics';
+    const text = JSON.stringify(graph);
     if (text === shown) return;
     shown = text;
     draw(svg, graph);
   }
-  every(2000, refresh, (error) => { summary.textContent = error.message; });
-  debug.addEventListener('change', () => { shown = ''; refresh().catch((error) => { summary.textContent = error.message; }); });
+  // Told only while the panel is on screen: a graph nobody sees is not worth the server's work.
+  function follow(visible) {
+    root.dataset.watching = String(visible);
+    if (visible && !watch) watch = bridge.watchLab('graph', show, {debug: debug.checked});
+    if (!visible && watch) { watch.stop(); watch = null; }
+  }
+  new IntersectionObserver((entries) => follow(entries[entries.length - 1].isIntersecting)).observe(root);
+  debug.addEventListener('change', () => { if (watch) watch.set({debug: debug.checked}); });
 }

@@ -25,6 +25,7 @@ export function imageView(canvas, fpsLabel) {
 export function frameCounter(canvas, fpsLabel) {
   let frames = 0;
   setInterval(() => {
+    if (canvas.dataset.fps === String(frames)) { frames = 0; return; }  // nothing new to write (0 fps again)
     if (fpsLabel) fpsLabel.textContent = frames + ' fps';
     canvas.dataset.fps = String(frames);
     frames = 0;

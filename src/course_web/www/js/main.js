@@ -1,4 +1,5 @@
 // The page: one Bridge, one module per panel.
+import {whenHidden} from './api.js';
 import {Bridge, bridgeUrl} from './bridge.js';
 import * as canvasPanel from './canvas_panel.js';
 import * as teleopPanel from './teleop_panel.js';
@@ -26,4 +27,7 @@ bridge.onStatus((status) => { serverStatus.textContent = status.level + ': ' + s
 for (const [name, panel] of Object.entries(PANELS)) {
   panel.mount(bridge, document.querySelector('[data-panel="' + name + '"]'));
 }
+// Out of sight, the page asks the server to tell it nothing about the ROS side; back, it is told at once.
+whenHidden(() => bridge.setLabPaused(true), () => bridge.setLabPaused(false));
+if (document.hidden) bridge.setLabPaused(true);
 document.body.dataset.ready = 'true';

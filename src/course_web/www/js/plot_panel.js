@@ -145,7 +145,13 @@ export function mount(bridge, root) {
   let wanted = '';
   form.addEventListener('submit', (event) => { event.preventDefault(); wanted = input.value.trim(); start(wanted); });
   root.querySelector('#plot-clear').addEventListener('click', () => { for (const s of series) s.points = []; });
-  setInterval(render, 100);
+  // Redrawn 10 times a second while it has lines to draw and the page is in sight; an empty plot once.
+  let blank = false;
+  setInterval(() => {
+    if (document.hidden || (blank && !series.length)) return;
+    render();
+    blank = !series.length;
+  }, 100);
   // Out of sight, nothing is plotted (the server stops sending); back, the plot starts again.
   whenHidden(() => { latest += 1; stop(); }, () => { if (wanted) start(wanted); });
 }

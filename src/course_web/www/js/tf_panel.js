@@ -1,5 +1,5 @@
 // The TF tree (view_frames / rqt_tf_tree's job): every parent -> child link seen on /tf and
-// /tf_static, as a tree, with each dynamic link's rate and age. Redrawn once a second.
+// /tf_static, as a tree, with each dynamic link's rate and age. Redrawn once a second while in sight.
 const WINDOW_S = 5;
 
 export function mount(bridge, root) {
@@ -63,6 +63,7 @@ export function mount(bridge, root) {
 
   bridge.subscribe('/tf', 'tf2_msgs/TFMessage', (message) => take(message, false), {queue_length: 50});
   bridge.subscribe('/tf_static', 'tf2_msgs/TFMessage', (message) => take(message, true), {queue_length: 50});
-  setInterval(render, 1000);
+  // Once a second (the rates and ages change) while there is something to show and the page is in sight.
+  setInterval(() => { if (!document.hidden && links.size) render(); }, 1000);
   render();
 }

@@ -2,7 +2,6 @@
 // streamed like any camera. Drag to orbit, shift-drag (or the right button) to pan, the wheel
 // to zoom: each move publishes a gazebo_msgs/OrbitView on /gazebo/free_camera/set_view, and
 // the simulator's latched /gazebo/free_camera/view says what it applied.
-import {ask, every} from './api.js';
 import {imageView} from './image_view.js';
 
 const IMAGE = '/gazebo/free_camera/image_raw';
@@ -97,9 +96,10 @@ export function mount(bridge, root) {
     send();
   }, {passive: false});
 
-  const poll = every(3000, async () => {
-    const {topics} = await ask('topics');
-    if (!started && topics.some((t) => t.name === IMAGE)) { start(); clearInterval(poll); }
-  }, (error) => { note.textContent = error.message; });
+  // Until the simulator's camera shows in the topic list (the server sends it when it changes).
+  const watch = bridge.watchLab('topics', (answer) => {
+    if (answer.error) { note.textContent = answer.error; return; }
+    if (!started && answer.topics.some((t) => t.name === IMAGE)) { start(); watch.stop(); }
+  });
   note.textContent = 'no simulator yet: start a Gazebo world (roslaunch rrbot_gazebo rrbot_world.launch)';
 }

@@ -14,6 +14,7 @@ panels are in test_lab_view_simulator.
 from __future__ import annotations
 
 import asyncio
+import math
 import os
 
 import pytest
@@ -333,8 +334,9 @@ def test_the_tf_tree_shows_static_and_moving_frames(browser, lab, client_class, 
 
 PAGE_LOGIC = """
 const done = arguments[arguments.length - 1];
-Promise.all([import('/js/plot_panel.js'), import('/js/graph_panel.js'), import('/js/view3d_panel.js')])
-  .then(([plot, graph, view3d]) => {
+Promise.all([import('/js/plot_panel.js'), import('/js/graph_panel.js'), import('/js/view3d_panel.js'),
+             import('/js/canvas_panel.js')])
+  .then(([plot, graph, view3d, canvas]) => {
     const v = {target: {x: 1, y: 2, z: 0}, azimuth: 0, elevation: 0.2, distance: 4};
     const ranks = graph.layers(['a', 'b', 'c', 'd'],
       [{from: 'a', to: 'b'}, {from: 'b', to: 'c'}, {from: 'c', to: 'a'}, {from: 'c', to: 'd'}, {from: 'x', to: 'a'}]);
@@ -347,6 +349,8 @@ Promise.all([import('/js/plot_panel.js'), import('/js/graph_panel.js'), import('
       ranks: Object.fromEntries(ranks),
       orbit: view3d.dragged(v, 100, 0, false), tilt: view3d.dragged(v, 0, 1e6, false),
       pan: view3d.dragged(v, 100, 0, true), zoom: view3d.zoomed(v, -1), original: v,
+      moved: [canvas.movedOn(['t', 100, 100, 0, 0, 45, 0, 0], 2), canvas.movedOn(['t', 250, 250, 0, 0, 45, 0, 0.8], Math.PI / 0.8),
+              canvas.movedOn(['t', 100, 100, 0, 0, 0, 45, 0], 1), canvas.movedOn(['t', 1, 2, 0.5, 3], 1)],
     });
   }).catch((error) => done({error: String(error)}));
 """
@@ -368,6 +372,12 @@ def test_the_pages_own_logic(browser, lab, open_page):
     assert pan["target"]["x"] == pytest.approx(1.0) and pan["target"]["y"] < 2.0  # the ground follows the pointer
     assert pan["azimuth"] == 0 and result["zoom"]["distance"] == pytest.approx(4 / 1.15)
     assert result["original"]["target"] == {"x": 1, "y": 2, "z": 0}  # the functions do not change their input
+    # a turtle moved on between ~scene updates (canvas pixels, y down; theta and w counter-clockwise)
+    straight, half_circle, sideways, still = result["moved"]
+    assert straight[1:4] == pytest.approx([190, 100, 0])
+    assert half_circle[1:4] == pytest.approx([250, 250 - 2 * 45 / 0.8, math.pi], abs=1e-6)  # up the canvas, facing west
+    assert sideways[1:3] == pytest.approx([100, 55])  # to its left: up the canvas
+    assert still == ["t", 1, 2, 0.5, 3]  # an update without velocities: where it was
 
 
 def save_and_check(driver, name):

@@ -33,7 +33,6 @@ from turtlesim.ticker import Ticker
 
 POSE_LAYOUT = "<5f"  # turtlesim/Pose on the wire: x, y, theta, linear_velocity, angular_velocity
 COLOR_LAYOUT = "<3B"  # turtlesim/Color: r, g, b
-SCENE_TICKS = 3  # ~scene carries what changed every 3 ticks (20.8 updates a second at most)
 SCENE_GRACE_S = 10.0  # how long after a ~canvas call lines are recorded for a subscriber still connecting
 SCENE_QUEUE = 50  # updates a slow subscriber may have waiting (one it misses makes the page ask ~canvas)
 
@@ -217,8 +216,9 @@ class TurtlesimNode:
             self._last_poses = poses
         if not scene_watched:
             return None
-        self.scene.record(((u.turtle.pen, u.result.segments) for u in updates), poses)
-        return self.scene.take() if self._ticks % SCENE_TICKS == 0 else None
+        self.scene.record(((u.turtle.pen, u.result.segments) for u in updates),
+                          [pose + (u.turtle.vx, u.turtle.vy, u.turtle.w) for pose, u in zip(poses, updates)])
+        return self.scene.take() if self.scene.due() else None
 
     def _colour_wanted(self, name: str) -> bool:
         iface = self.interfaces.get(name)

@@ -53,3 +53,37 @@ def test_ticker_stop_ends_a_long_wait_at_once_and_may_come_twice():
     ticker.stop()  # a second stop (another thread, a shutdown hook) is harmless
     ticker.join(2.0)
     assert not ticker.is_alive()
+
+
+def test_a_batched_ticker_keeps_every_tick_with_fewer_wake_ups():
+    ticks = []
+    done = threading.Event()
+
+    def tick():
+        ticks.append(time.monotonic())
+        if len(ticks) == 40:
+            done.set()
+
+    ticker = Ticker(0.005, tick, batch=lambda: 2)
+    ticker.start()
+    assert done.wait(5.0)
+    ticker.stop()
+    ticker.join(1.0)
+    assert len(ticks) >= 40 and ticker.wakes <= len(ticks) // 2 + 1
+
+
+def test_a_ticker_whose_batch_question_fails_ticks_once_a_wake_up():
+    done = threading.Event()
+    count = []
+
+    def tick():
+        count.append(1)
+        if len(count) == 10:
+            done.set()
+
+    ticker = Ticker(0.005, tick, batch=lambda: 1 // 0)
+    ticker.start()
+    assert done.wait(5.0)
+    ticker.stop()
+    ticker.join(1.0)
+    assert ticker.wakes >= len(count) - 1

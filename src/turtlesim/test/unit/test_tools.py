@@ -28,20 +28,26 @@ def test_square_driver_closes_a_square():
     assert len(visited) == 4
 
 
-def test_ticker_keeps_its_schedule():
+def run_ticker(count, period, **options):
+    """A Ticker run until it has ticked `count` times: (the tick times, the stopped ticker)."""
     ticks = []
     done = threading.Event()
 
     def tick():
         ticks.append(time.monotonic())
-        if len(ticks) == 25:
+        if len(ticks) == count:
             done.set()
 
-    ticker = Ticker(0.01, tick)
+    ticker = Ticker(period, tick, **options)
     ticker.start()
     assert done.wait(5.0)
     ticker.stop()
     ticker.join(1.0)
+    return ticks, ticker
+
+
+def test_ticker_keeps_its_schedule():
+    ticks, _ = run_ticker(25, 0.01)
     span = ticks[24] - ticks[0]
     assert span == pytest.approx(0.24, abs=0.1)
 
@@ -56,34 +62,10 @@ def test_ticker_stop_ends_a_long_wait_at_once_and_may_come_twice():
 
 
 def test_a_batched_ticker_keeps_every_tick_with_fewer_wake_ups():
-    ticks = []
-    done = threading.Event()
-
-    def tick():
-        ticks.append(time.monotonic())
-        if len(ticks) == 40:
-            done.set()
-
-    ticker = Ticker(0.005, tick, batch=lambda: 2)
-    ticker.start()
-    assert done.wait(5.0)
-    ticker.stop()
-    ticker.join(1.0)
+    ticks, ticker = run_ticker(40, 0.005, batch=lambda: 2)
     assert len(ticks) >= 40 and ticker.wakes <= len(ticks) // 2 + 1
 
 
 def test_a_ticker_whose_batch_question_fails_ticks_once_a_wake_up():
-    done = threading.Event()
-    count = []
-
-    def tick():
-        count.append(1)
-        if len(count) == 10:
-            done.set()
-
-    ticker = Ticker(0.005, tick, batch=lambda: 1 // 0)
-    ticker.start()
-    assert done.wait(5.0)
-    ticker.stop()
-    ticker.join(1.0)
-    assert ticker.wakes >= len(count) - 1
+    ticks, ticker = run_ticker(10, 0.005, batch=lambda: 1 // 0)
+    assert ticker.wakes >= len(ticks) - 1

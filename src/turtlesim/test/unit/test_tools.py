@@ -69,3 +69,26 @@ def test_a_batched_ticker_keeps_every_tick_with_fewer_wake_ups():
 def test_a_ticker_whose_batch_question_fails_ticks_once_a_wake_up():
     ticks, ticker = run_ticker(10, 0.005, batch=lambda: 1 // 0)
     assert ticker.wakes >= len(ticks) - 1
+
+
+def test_a_late_wake_up_is_made_up_and_a_stall_restarts_the_schedule():
+    period = 0.02
+    stalls = {5: 3.5, 30: 40.0}  # tick number -> how many periods it takes
+    ticks = []
+    done = threading.Event()
+
+    def tick():
+        ticks.append(time.monotonic())
+        time.sleep(stalls.get(len(ticks) - 1, 0.0) * period)
+        if len(ticks) == 60:
+            done.set()
+
+    ticker = Ticker(period, tick)
+    ticker.start()
+    assert done.wait(10.0)
+    ticker.stop()
+    ticker.join(1.0)
+    # 3.5 periods late after tick 5: made up (tick 25 keeps tick 0's schedule); 40 after tick 30: a restart
+    assert ticks[25] - ticks[0] == pytest.approx(25 * period, abs=2.5 * period)
+    assert ticker.late_restarts == 1
+    assert ticks[45] - ticks[31] == pytest.approx(14 * period, abs=2.5 * period)  # no burst of 40 after it

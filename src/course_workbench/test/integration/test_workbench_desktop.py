@@ -172,7 +172,11 @@ def test_the_launchers_desktop_shows_turtlesim_and_rviz_started_in_a_terminal(be
                 with os.fdopen(fd, "wb") as out:
                     out.write(shots[0])
                 blue, rviz_colours = seen()
-                pytest.fail("turtlesim's window: %.2f of it turtlesim's blue; rviz's: %s (windows %s, screenshot %s)"
-                            % (blue, rviz_colours, windows(), path))
+                # roslaunch's own words (a node that died, rviz's last lines): what a flaky run needs
+                pytest.fail("turtlesim's window: %.2f of it turtlesim's blue; rviz's: %s (windows %s, screenshot %s);"
+                            " the demo's log ends: %s; rviz's: %s"
+                            % (blue, rviz_colours, windows(), path, term.run("tail -n 30 ~/demo.log")[1],
+                               term.run("tail -n 30 $(ls -t ~/.ros/log/latest/rviz*.log 2>/dev/null | head -1)"
+                                        " 2>/dev/null")[1]))
         finally:
             term.run("kill %1; wait")

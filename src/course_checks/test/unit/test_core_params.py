@@ -78,3 +78,22 @@ def test_the_folder_is_readable_by_the_sandbox_user_whatever_the_umask(etc, tmp_
     assert {p.name: p.stat().st_mode & 0o777 for p in run.iterdir() if not p.is_symlink()} == {
         "roscore.xml": 0o644, "param-0.txt": 0o644}
     assert (etc / "python_logging.conf").stat().st_mode == before
+
+
+def test_runs_starting_together_run_each_command_once(etc, tmp_path):
+    """A grading starts several runs at the same moment: the command still runs once."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    counter = tmp_path / "ran"
+    script = tmp_path / "bin" / "slow-version"
+    script.parent.mkdir()
+    # slow enough that, unserialised, every run would start it before the first had answered
+    script.write_text("#!/bin/sh\necho x >> %s\nsleep 0.3\necho 1.2.3\n" % counter)
+    script.chmod(0o755)
+    (etc / "roscore.xml").write_text(ROSCORE.replace("echo hello", "slow-version --unique-%s" % tmp_path.name))
+    env = {"ROS_ETC_DIR": str(etc), "PATH": "%s:%s" % (script.parent, os.environ["PATH"])}
+    with ThreadPoolExecutor(6) as pool:
+        runs = list(pool.map(lambda i: etc_dir_for_run(env, str(tmp_path / ("run%d" % i))), range(6)))
+    assert all(runs)
+    assert [Path(r, "param-0.txt").read_text() for r in runs] == ["1.2.3\n"] * 6
+    assert counter.read_text().count("x") == 1

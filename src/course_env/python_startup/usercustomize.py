@@ -1,4 +1,4 @@
-"""Python's start-up hook in the course environment: rospy without numpy's cost.
+"""Python's start-up hook in the course environment: rospy without numpy's and pyparsing's cost.
 
 course_env's env hook puts this folder (and nothing else in it) on PYTHONPATH; site.py imports
 `usercustomize` at every interpreter start where the user site is enabled (Debian's own
@@ -14,8 +14,16 @@ in that thread; numpy stays importable for everyone else and afterwards), and it
 whenever numpy is loaded, so check_type() gives upstream's verdict for every value. With numpy
 loaded first, or a genpy.message that uses numpy anywhere else, nothing changes. Whatever goes
 wrong in here is swallowed: the import then runs as it would without the hook.
-See docs/rospy_limits.md.
+
+Likewise pyparsing: every rospy process imports roslib, which imports catkin_pkg.package, whose
+catkin_pkg.condition imports pyparsing at module level (6.5 MiB, 36-48 ms of CPU) for one use:
+parsing a package.xml `condition` attribute, which evaluate_condition() does only for a condition
+that is not None (almost none has one). A second finder loads catkin_pkg.condition with its own
+`import pyparsing` answered by a stand-in (its `__import__` only: pyparsing is neither refused nor
+replaced for anyone else); the first attribute asked of the stand-in imports pyparsing and puts it
+in the module's globals, in place of the stand-in. See docs/rospy_limits.md.
 """
+import builtins
 import sys
 from _thread import get_ident
 
@@ -66,10 +74,10 @@ def importer_name() -> str:
     return "" if frame is None or frame.f_code.co_name != "<module>" else frame.f_globals.get("__name__", "")
 
 
-class GenpyMessageLoader:
-    """genpy.message's own loader, whose exec_module runs through NumpyDeferral.load."""
+class DeferringLoader:
+    """A module's own loader, whose exec_module runs through its deferral's load()."""
 
-    def __init__(self, loader: object, deferral: "NumpyDeferral") -> None:
+    def __init__(self, loader: object, deferral: "OneModuleDeferral") -> None:
         self.loader = loader
         self.deferral = deferral
 
@@ -83,13 +91,69 @@ class GenpyMessageLoader:
         return getattr(self.loader, name)
 
 
-class NumpyDeferral:
-    """The meta path finder: sees genpy.message's import, then its `import numpy`; leaves
-    sys.meta_path once genpy.message is loaded or found with numpy already loaded."""
+class OneModuleDeferral:
+    """A meta path finder acting on the import of one module (`target`) while `dependency` is
+    not loaded: it gives the module's spec as the next finders give it, with a DeferringLoader,
+    and leaves sys.meta_path once the module is loaded, or found with `dependency` loaded."""
+
+    target = ""
+    dependency = ""
 
     def __init__(self, meta_path: list, modules: dict) -> None:
         self.meta_path = meta_path
         self.modules = modules
+
+    def find_spec(self, fullname: str, path: object = None, target: object = None) -> object:
+        if fullname != self.target:
+            return None
+        try:
+            return self.target_spec(path, target)
+        except Exception:
+            self.leave()
+            return None
+
+    def target_spec(self, path: object, target: object) -> object:
+        if self.modules.get(self.dependency) is not None:
+            self.leave()
+            return None
+        for finder in list(self.meta_path):
+            find = getattr(finder, "find_spec", None)
+            spec = None if finder is self or find is None else find(self.target, path, target)
+            if spec is not None:
+                break
+        else:
+            spec = None
+        if spec is None or not all(hasattr(spec.loader, m) for m in ("get_code", "exec_module", "create_module")):
+            self.leave()
+            return None
+        spec.loader = DeferringLoader(spec.loader, self)
+        return spec
+
+    def load(self, module: object, loader: object) -> None:
+        raise NotImplementedError
+
+    def leave(self) -> None:
+        try:
+            while self in self.meta_path:
+                self.meta_path.remove(self)
+        except Exception:
+            pass
+
+    @classmethod
+    def install(cls, meta_path: list, modules: dict) -> None:
+        """First on `meta_path`, unless the module or its dependency is loaded already."""
+        if cls.target not in modules and modules.get(cls.dependency) is None:
+            meta_path.insert(0, cls(meta_path, modules))
+
+
+class NumpyDeferral(OneModuleDeferral):
+    """Sees genpy.message's import, then its `import numpy`."""
+
+    target = TARGET
+    dependency = NUMPY
+
+    def __init__(self, meta_path: list, modules: dict) -> None:
+        super().__init__(meta_path, modules)
         self.loading_thread = None  # the thread running genpy.message's module code, while it does
         self.refused = False  # genpy.message's `import numpy` failed through us
 
@@ -97,13 +161,7 @@ class NumpyDeferral:
         if fullname == NUMPY and self.refuses_numpy():
             raise ModuleNotFoundError("No module named 'numpy' (deferred: course_env's usercustomize)",
                                       name=NUMPY)
-        if fullname != TARGET:
-            return None
-        try:
-            return self.genpy_message_spec(path, target)
-        except Exception:
-            self.leave()
-            return None
+        return super().find_spec(fullname, path, target)
 
     def refuses_numpy(self) -> bool:
         try:
@@ -113,25 +171,6 @@ class NumpyDeferral:
             return True
         except Exception:
             return False
-
-    def genpy_message_spec(self, path: object, target: object) -> object:
-        """genpy.message's spec as the next finders give it, with our loader; None (and this
-        finder gone) when numpy is loaded already or the spec is not one we know."""
-        if self.modules.get(NUMPY) is not None:
-            self.leave()
-            return None
-        for finder in list(self.meta_path):
-            find = getattr(finder, "find_spec", None)
-            spec = None if finder is self or find is None else find(TARGET, path, target)
-            if spec is not None:
-                break
-        else:
-            spec = None
-        if spec is None or not all(hasattr(spec.loader, m) for m in ("get_code", "exec_module", "create_module")):
-            self.leave()
-            return None
-        spec.loader = GenpyMessageLoader(spec.loader, self)
-        return spec
 
     def load(self, module: object, loader: object) -> None:
         """Run genpy.message's code in `module` as `loader` would, its `import numpy` refused when
@@ -160,22 +199,94 @@ class NumpyDeferral:
             except Exception:
                 pass
 
-    def leave(self) -> None:
+
+# -- pyparsing, for catkin_pkg.condition --------------------------------------------------------
+
+CONDITION = "catkin_pkg.condition"
+PYPARSING = "pyparsing"
+# What catkin_pkg.condition takes from pyparsing by name at module level (`from pyparsing import
+# infixNotation`; operatorPrecedence before pyparsing 1.5.7): functions it only calls, later.
+DEFERRED_FUNCTIONS = ("infixNotation", "operatorPrecedence")
+
+
+class LazyFunction:
+    """Stands in a module's globals for one of pyparsing's functions until pyparsing is loaded."""
+
+    __slots__ = ("standin", "name")
+
+    def __init__(self, standin: "PyparsingStandin", name: str) -> None:
+        self.standin = standin
+        self.name = name
+
+    def __call__(self, *args: object, **kwargs: object) -> object:
+        return getattr(self.standin.load(), self.name)(*args, **kwargs)
+
+
+class PyparsingStandin:
+    """catkin_pkg.condition's `pp` until it uses it: any attribute asked for loads pyparsing and
+    puts it, and its functions, in the module's globals where the stand-ins were."""
+
+    def __init__(self, module_globals: dict, modules: dict) -> None:
+        self._globals = module_globals
+        self._modules = modules
+        for name in DEFERRED_FUNCTIONS:
+            setattr(self, name, LazyFunction(self, name))
+
+    def load(self) -> object:
+        real = self._modules.get(PYPARSING)
+        if real is None:
+            real = __import__(PYPARSING)
+        for key, value in list(self._globals.items()):
+            if value is self:
+                self._globals[key] = real
+            elif isinstance(value, LazyFunction) and value.standin is self:
+                self._globals[key] = getattr(real, value.name)
+        return real
+
+    def __getattr__(self, name: str) -> object:
+        if name.startswith("_"):
+            raise AttributeError(name)
+        return getattr(self.load(), name)
+
+
+class PyparsingDeferral(OneModuleDeferral):
+    """Sees catkin_pkg.condition's import; runs its code with a stand-in for pyparsing."""
+
+    target = CONDITION
+    dependency = PYPARSING
+
+    def load(self, module: object, loader: object) -> None:
+        """Run catkin_pkg.condition's code in `module` as `loader` would, its `import pyparsing`
+        answered by a stand-in while pyparsing is not loaded."""
         try:
-            while self in self.meta_path:
-                self.meta_path.remove(self)
+            module.__loader__ = module.__spec__.loader = loader
+            code = loader.get_code(module.__name__)
+            standin = PyparsingStandin(module.__dict__, self.modules)
+            modules = self.modules
+            real_import = builtins.__import__
+
+            def import_(name, globals=None, locals=None, fromlist=(), level=0):
+                if name == PYPARSING and level == 0 and modules.get(PYPARSING) is None:
+                    return standin
+                return real_import(name, globals, locals, fromlist, level)
+            module.__dict__["__builtins__"] = dict(builtins.__dict__, __import__=import_)
+        except Exception:
+            self.leave()
+            loader.exec_module(module)
+            return
+        try:
+            exec(code, module.__dict__)
+        finally:
+            self.leave()
+
+
+def install(meta_path: list = sys.meta_path, modules: dict = sys.modules) -> None:
+    """Both finders, each first on `meta_path` unless what it defers is loaded already."""
+    for deferral in (NumpyDeferral, PyparsingDeferral):
+        try:
+            deferral.install(meta_path, modules)
         except Exception:
             pass
 
 
-def install(meta_path: list = sys.meta_path, modules: dict = sys.modules) -> None:
-    """Put the finder first on `meta_path`, unless genpy.message or numpy is loaded already."""
-    if TARGET in modules or modules.get(NUMPY) is not None:
-        return
-    meta_path.insert(0, NumpyDeferral(meta_path, modules))
-
-
-try:
-    install()
-except Exception:
-    pass
+install()

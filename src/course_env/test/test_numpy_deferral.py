@@ -16,63 +16,22 @@ import shutil
 import subprocess
 import tempfile
 from pathlib import Path
-from typing import Dict, Iterator, List
+from typing import Dict, Iterator
 
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from course_checks.isolation import sourced_env
 from course_sandbox import levels
-from course_sandbox.env_paths import drop_entries
 from course_sandbox.policy import DEFAULT_USER, Policy
 from course_sandbox.run import RunSandbox
+from course_testkit.python_startup import (DEBIAN_PYTHON, HOOK_STATE, SETUP, SOLUTIONS_SETUP, STARTUP, TIMEOUT_S,  # noqa: F401
+                                           Oracle, facts, hooked, upstream, without_hook)
 
 ROOT = Path(__file__).resolve().parents[3]
-SETUP = ROOT / "catkin_ws" / "devel" / "setup.bash"
-SOLUTIONS_SETUP = ROOT / "solutions_ws" / "devel" / "setup.bash"
-STARTUP = str(ROOT / "catkin_ws" / "devel" / "lib" / "course_env" / "python_startup")
 ORACLE = Path(__file__).resolve().parent / "check_type_oracle.py"
-DEBIAN_PYTHON = "/usr/bin/python3"
-TIMEOUT_S = 120.0
 
 pytestmark = pytest.mark.skipif(not SETUP.exists(), reason="workspace not built")
-
-
-def without_hook(env: Dict[str, str]) -> Dict[str, str]:
-    """`env` with no course_env python_startup folder on PYTHONPATH (any workspace's)."""
-    clean = drop_entries(env, lambda p: p.rstrip("/").endswith(os.path.join("course_env", "python_startup")))
-    clean.pop("PYTHONNOUSERSITE", None)
-    return clean
-
-
-@pytest.fixture(scope="module")
-def hooked() -> Dict[str, str]:
-    """A new shell's environment after sourcing the course workspace."""
-    return sourced_env(SETUP, without_hook(dict(os.environ)))
-
-
-@pytest.fixture(scope="module")
-def upstream(hooked) -> Dict[str, str]:
-    return without_hook(hooked)
-
-
-def python(env: Dict[str, str], code: str, interpreter: str = DEBIAN_PYTHON) -> subprocess.CompletedProcess:
-    return subprocess.run([interpreter, "-c", code], env=env, capture_output=True, text=True,
-                          stdin=subprocess.DEVNULL, timeout=TIMEOUT_S, cwd=str(ROOT))
-
-
-def facts(env: Dict[str, str], code: str, interpreter: str = DEBIAN_PYTHON) -> dict:
-    """What `code` leaves in its `facts` dict, with sys imported, in a fresh interpreter."""
-    done = python(env, "import json, sys\nfacts = {}\n%s\nprint(json.dumps(facts))" % code, interpreter)
-    assert done.returncode == 0, done.stderr
-    assert done.stderr == "", done.stderr
-    return json.loads(done.stdout.splitlines()[-1])
-
-
-HOOK_STATE = ("facts['numpy'] = 'numpy' in sys.modules\n"
-              "facts['hook_loaded'] = 'usercustomize' in sys.modules\n"
-              "facts['finders'] = [type(f).__name__ for f in sys.meta_path]\n")
 
 
 # The path, sourced again and chained
@@ -213,31 +172,10 @@ def test_every_numpy_scalar_type_gets_upstreams_verdict(hooked, upstream):
     assert len(first["accepted"]) == 10
 
 
-class Oracle:
-    """A check_type_oracle.py process: one verdict per question."""
-
-    def __init__(self, env: Dict[str, str], mode: str) -> None:
-        self.proc = subprocess.Popen([DEBIAN_PYTHON, str(ORACLE), mode], env=env, stdin=subprocess.PIPE,
-                                     stdout=subprocess.PIPE, text=True, cwd=str(ROOT))
-        self.state = json.loads(self.proc.stdout.readline())
-
-    def ask(self, field_type: str, value: list) -> str:
-        self.proc.stdin.write(json.dumps([field_type, value]) + "\n")
-        self.proc.stdin.flush()
-        return json.loads(self.proc.stdout.readline())
-
-    def close(self) -> List[str]:
-        """End it; whatever it said after the last question."""
-        self.proc.stdin.close()
-        rest = [json.loads(line) for line in self.proc.stdout]
-        self.proc.wait(timeout=TIMEOUT_S)
-        return rest
-
-
 @pytest.fixture(scope="module")
 def oracles(hooked, upstream) -> Iterator[Dict[str, Oracle]]:
-    made = {"upstream": Oracle(upstream, "numpy-first"), "numpy-later": Oracle(hooked, "numpy-later"),
-            "no-numpy": Oracle(hooked, "no-numpy")}
+    made = {"upstream": Oracle(ORACLE, upstream, "numpy-first"), "numpy-later": Oracle(ORACLE, hooked, "numpy-later"),
+            "no-numpy": Oracle(ORACLE, hooked, "no-numpy")}
     yield made
     leftovers = {name: oracle.close() for name, oracle in made.items()}
     assert leftovers == {"upstream": [], "numpy-later": [], "no-numpy": []}

@@ -67,10 +67,14 @@ apt_install() {  # apt_install PACKAGE...: apt-get update, then install them
   $sudo apt-get update && $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "$@"
 }
 pip_install() {  # pip_install DIR REQUIREMENTS STAMP SHA [venv options]: DIR made from /usr/bin/python3 once
-  local dir="$1" requirements="$2" stamp="$3" sha="$4"
+  # A line `# unwanted: PKG...` in REQUIREMENTS names what a requirement's extra pulls in and the
+  # venv must not keep: removed after the install.
+  local dir="$1" requirements="$2" stamp="$3" sha="$4" unwanted
   shift 4
+  unwanted="$(sed -n 's/^# unwanted: *//p' "$requirements")"
   { [ -x "$dir/bin/python3" ] || /usr/bin/python3 -m venv "$@" "$dir"; } \
     && "$dir/bin/python3" -m pip install --disable-pip-version-check -r "$requirements" \
+    && { [ -z "$unwanted" ] || "$dir/bin/python3" -m pip uninstall --disable-pip-version-check -y $unwanted; } \
     && echo "$sha" > "$stamp"
 }
 package_install() {  # package_install VENV PACKAGE STAMP SHA: the Python package in folder PACKAGE into VENV

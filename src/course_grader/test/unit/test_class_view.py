@@ -103,3 +103,22 @@ def test_report_shows_the_class_first_and_works_without_javascript(tmp_path):
     assert 'data-groups="checkpoint1:wrong_topic"' in page  # ann's row: what the filter matches
     assert "<input id='filter' hidden" in page  # shown by the script only: no dead input without it
     assert (tmp_path / class_view.HISTOGRAM_PNG).read_bytes().startswith(b"\x89PNG")
+
+
+def test_the_plotting_imports_can_be_done_ahead_on_a_thread(tmp_path):
+    """What the grader starts while the runs go on: afterwards pyplot and the Agg backend are
+    loaded, and the histogram is drawn."""
+    import subprocess
+    import sys
+    code = ("import sys\n"
+            "from course_grader import class_view\n"
+            "class_view.plotting_loader().join(120)\n"
+            "import matplotlib\n"
+            "print(all(m in sys.modules for m in ('matplotlib.pyplot', 'matplotlib.backends.backend_agg')),"
+            " matplotlib.get_backend().lower())\n"
+            "print(class_view.histogram(%r, []) is not None)\n"
+            % str(tmp_path / "scores.png"))
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=180)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.splitlines() == ["True agg", "True"], done.stdout
+    assert (tmp_path / "scores.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

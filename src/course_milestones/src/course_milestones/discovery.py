@@ -26,6 +26,9 @@ _IGNORED_SUFFIXES = (".pyc", ".so", ".a", ".o", ".cmake", ".txt", ".xml", ".md",
                      ".msg", ".srv", ".action", ".yaml", ".yml", ".png", ".sh~")
 _IGNORED_DIRS = {"CMakeFiles", ".git", "__pycache__", "test", "tests", "msg", "srv", "action", "cfg"}
 _IGNORED_NAMES = {"setup.py", "__init__.py"}
+# How often a wait asks the master about registrations: each look costs the check and the master
+# 2-4 ms of CPU, and what is waited for (a node starting, a launch file's nodes) takes a second or more.
+MASTER_POLL_S = 0.1
 # What every rospy node registers: not worth naming to a student.
 _ROUTINE = ("/rosout", "/get_loggers", "/set_logger_level")
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 from typing import Dict, List, Optional
 
 from course_milestones import causes
-from course_milestones.discovery import Registration, system_state
+from course_milestones.discovery import MASTER_POLL_S, Registration, system_state
 from course_checks.artifacts import save_canvas
 from course_checks.waiting import wait_for
 
@@ -27,7 +27,10 @@ def simulators() -> Dict[str, str]:
 
 def wait_for_simulators(timeout: float) -> Dict[str, str]:
     """simulators() once both namespaces have one, or what there is after `timeout`."""
-    return wait_for(lambda: simulators() if len(simulators()) == len(NAMESPACES) else {}, timeout) or simulators()
+    def both() -> Dict[str, str]:
+        found = simulators()
+        return found if len(found) == len(NAMESPACES) else {}
+    return wait_for(both, timeout, MASTER_POLL_S) or simulators()
 
 
 def missing_simulators(found: Dict[str, str]) -> str:

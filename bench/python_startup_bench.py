@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""What course_env's usercustomize saves each rospy process (issue 23: rospy without numpy).
+"""What course_env's usercustomize saves each rospy process (issue 23: rospy without numpy and pyparsing).
 
     python3 bench/python_startup_bench.py [--runs 7]
 

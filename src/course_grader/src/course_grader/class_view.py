@@ -8,6 +8,7 @@ import csv
 import os
 import statistics
 import threading
+from types import ModuleType
 from typing import Dict, List, NamedTuple, Optional, Sequence
 
 from course_milestones import causes
@@ -87,17 +88,19 @@ def write_csvs(out: str, verdicts: Sequence[Verdict], order: Sequence[Milestone]
             w.writerow([g.milestone, g.cause, len(g.students), " ".join(g.students)])
 
 
-def load_plotting() -> None:
-    """Import matplotlib with its Agg backend, and pyplot: 0.7 CPU s, which histogram() would
-    otherwise spend after the last verdict. The grader runs it on a thread of its own while the
-    runs go on; nothing when matplotlib is missing."""
+def load_plotting() -> Optional[ModuleType]:
+    """pyplot on matplotlib's Agg backend (with the backend savefig() loads), or None when
+    matplotlib is missing (Debian's python3-matplotlib: tools/apt-packages.txt). The first call
+    imports them, 0.7 CPU s: the grader makes it on a thread of its own while the runs go on, so
+    that histogram() does not spend it after the last verdict."""
     try:
         import matplotlib
         matplotlib.use("Agg")
-        from matplotlib import pyplot  # noqa: F401
+        from matplotlib import pyplot
         from matplotlib.backends import backend_agg  # noqa: F401 - what savefig() loads
     except ImportError:
-        pass
+        return None
+    return pyplot
 
 
 def plotting_loader() -> threading.Thread:
@@ -109,12 +112,9 @@ def plotting_loader() -> threading.Thread:
 
 def histogram(path: str, verdicts: Sequence[Verdict]) -> Optional[str]:
     """A PNG of the students' scores (percent of their points, in tenths); None when matplotlib is
-    missing (Debian's python3-matplotlib: tools/apt-packages.txt)."""
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        from matplotlib import pyplot
-    except ImportError:
+    missing."""
+    pyplot = load_plotting()
+    if pyplot is None:
         return None
     totals = list(student_totals(verdicts).values())
     figure, axes = pyplot.subplots(figsize=(5, 2.6), dpi=100)

@@ -23,6 +23,7 @@ catkin_ws and solutions_ws are built), rounds alternating before/after on the sa
 and prints both tables and the ratios: the figures of one run, under the same load.
 
     python3 bench/grade_phases.py [--jobs N] [--rounds R] [--only M ...] [--before REV]
+        [--before-args ARGS] [--after-args ARGS]
 """
 from __future__ import annotations
 
@@ -66,6 +67,7 @@ class Code(NamedTuple):
     """A grader to measure: what to call it and the setup.bash that puts it on the path."""
     label: str
     setup: Path
+    args: Tuple[str, ...] = ()  # more arguments for its `grade`
 
 
 CPUACCT = Path("/sys/fs/cgroup/cpuacct")
@@ -150,7 +152,7 @@ def grade_once(code: Code, sub: Path, out: Path, jobs: int, only: List[str]) -> 
     started_wall = time.time()
     started = time.monotonic()
     args = ["rosrun", "course_grader", "grade", str(sub), "--out", str(out), "--jobs", str(jobs), "-v"]
-    args += [a for m in only for a in ("--only", m)]
+    args += [a for m in only for a in ("--only", m)] + list(code.args)
     group = cpu_cgroup("grade-phases-%d" % os.getpid())
     cpu_before = int((group / "cpuacct.usage").read_text()) if group else 0
     # The shell joins the cgroup before it becomes the grader: every process below it is counted.
@@ -251,11 +253,16 @@ def main() -> int:
     parser.add_argument("--only", action="append", default=[], metavar="M")
     parser.add_argument("--before", metavar="REV", help="also grade with the grader of REV (a git revision or a "
                         "built checkout), alternating rounds, and compare")
+    parser.add_argument("--before-args", default="", help="more arguments for the before grader (e.g. "
+                        "'--early 0' with --before . to compare one option of this checkout)")
+    parser.add_argument("--after-args", default="", help="more arguments for this checkout's grader")
     opts = parser.parse_args()
-    codes = [Code("after" if opts.before else "this checkout", ROOT / "solutions_ws" / "devel" / "setup.bash")]
+    codes = [Code("after" if opts.before else "this checkout", ROOT / "solutions_ws" / "devel" / "setup.bash",
+                  tuple(shlex.split(opts.after_args)))]
     if opts.before:
-        codes.insert(0, Code("before (%s)" % opts.before,
-                             checkout_of(opts.before) / "solutions_ws" / "devel" / "setup.bash"))
+        codes.insert(0, Code("before (%s%s)" % (opts.before, " " + opts.before_args if opts.before_args else ""),
+                             checkout_of(opts.before) / "solutions_ws" / "devel" / "setup.bash",
+                             tuple(shlex.split(opts.before_args))))
     folder = scratch("grade-phases-")
     try:
         sub = submission(folder)

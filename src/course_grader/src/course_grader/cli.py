@@ -82,6 +82,9 @@ CORES = len(os.sched_getaffinity(0))
 DEFAULT_JOBS = default_jobs(CORES, available_mib())
 # Submissions built at once, beside the runs: a build (catkin_make) keeps about one core busy.
 DEFAULT_BUILDS = max(1, CORES // 2)
+# Runs started while a submission builds, when no run is under way (course_grader.early_runs): CMake
+# configures on one core, so the start-ups of that many runs fill the others.
+DEFAULT_EARLY = max(1, CORES - DEFAULT_BUILDS)
 
 
 def parse(argv: Optional[List[str]]) -> argparse.Namespace:
@@ -93,6 +96,9 @@ def parse(argv: Optional[List[str]]) -> argparse.Namespace:
                         help="milestone runs at once, across submissions (default %(default)s)")
     parser.add_argument("--builds", type=int, default=DEFAULT_BUILDS,
                         help="submissions built at once, beside the runs (default %(default)s)")
+    parser.add_argument("--early", type=int, default=DEFAULT_EARLY,
+                        help="runs started while a submission builds, if no run is under way; their checks "
+                             "wait until the build is done (default %(default)s, 0: none)")
     parser.add_argument("--only", action="extend", nargs="+", metavar="M",
                         help="grade only these milestones (--only a b, or --only a --only b)")
     parser.add_argument("--only-from", metavar="FILE",
@@ -243,7 +249,8 @@ def main(argv: Optional[List[str]] = None) -> int:
         grader = Grader(MILESTONES, Options(out, opts.jobs, opts.only, opts.only_from, opts.timeout,
                                             opts.verbose or reference, [s.path for s in subs if s.path],
                                             opts.builds, opts.disk * MiB,
-                                            [a for a in (course.solution, course.samples) if a]))
+                                            [a for a in (course.solution, course.samples) if a],
+                                            early=opts.early))
     except levels.Unavailable as err:
         release_output(out)
         print("cannot grade: %s" % err, file=sys.stderr)

@@ -19,6 +19,7 @@ a killed grading left running on the machine is ended by course_sandbox.leftover
 every start.""" 
 from __future__ import annotations
 
+import functools
 import json
 import os
 import shutil
@@ -36,14 +37,16 @@ from course_milestones.scripts import script_problems
 from course_checks import junit
 from course_checks.artifacts import ENV_VAR as ARTIFACTS_VAR
 from course_checks.rostest_runner import run_etc_dir, run_rostest
+from course_checks.run_gate import ENV_VAR as GATE_VAR
 
 from course_sandbox import leftovers, procs
 from course_sandbox.policy import ENV_VAR as POLICY_VAR, Limits
 
-from course_grader import gradescope, submissions, verdict, workspace
+from course_grader import gradescope, sandboxing, submissions, verdict, workspace
+from course_grader.early_runs import GO, RESTART, EarlyRun
 from course_grader.class_outputs import WORK_DIR
 from course_grader.sandboxing import SandboxPlan
-from course_grader.submissions import Submission
+from course_grader.submissions import Package, Submission
 from course_grader.student_files import copy_logs
 from course_grader.typical_durations import TYPICAL_S
 from course_grader.verdict import Verdict
@@ -54,6 +57,10 @@ PID_FILE = "grading.pid"  # in WORK_DIR: the pid of the grading that writes this
 KEPT_IN_WORK = ("durations.json", PID_FILE)
 # While interrupted: how often the processes below the grader are looked for and killed again.
 INTERRUPT_POLL_S = 0.2
+# In each run's work folder: the sandbox policy its check reads, the sandbox's report, the gate.
+POLICY_FILE = "sandbox_policy.json"
+SANDBOX_REPORT = "sandbox.json"
+GATE_FILE = "gate"
 
 
 def rostest_of(m: Milestone, run_dir: str) -> Tuple[str, str, List[str]]:
@@ -146,6 +153,7 @@ class Options(NamedTuple):
     builds: int = 1  # submissions unpacked and built at once, beside the `jobs` runs
     disk_bytes: int = Limits().disk_bytes  # what one student's work folder may take on disk in total
     answers: Sequence[str] = ()  # the course's reference solution and samples: hidden from student code
+    early: int = 0  # runs started while a submission builds, when no other run is under way (early_runs)
 
 
 class _Progress:
@@ -168,6 +176,7 @@ class Grader:
         self._lock = threading.Lock()
         self._idle = threading.Condition(self._lock)
         self._pending = 0
+        self._runs_pending = 0  # in the run pool: queued or running
         self._progress: Dict[str, _Progress] = {}
         self._done = 0
         self.verdicts: List[Verdict] = []
@@ -188,8 +197,10 @@ class Grader:
 
     # -- scheduling -------------------------------------------------------------------------
     def _submit(self, fn, *args, pool: Optional[ThreadPoolExecutor] = None) -> None:
+        runs = pool is None
         with self._lock:
             self._pending += 1
+            self._runs_pending += runs
 
         def task():
             try:
@@ -197,6 +208,7 @@ class Grader:
             finally:
                 with self._lock:
                     self._pending -= 1
+                    self._runs_pending -= runs
                     self._idle.notify_all()
         (pool or self._pool).submit(task)
 
@@ -305,34 +317,17 @@ class Grader:
             left_out = sorted({p.name for p in packages if p.name in self._protected})
             if left_out:
                 progress.note += "\nleft out (the course provides them): %s" % ", ".join(left_out)
-            setup = self._setup
             if self._stop.is_set():
                 self._fail_all(sub, runnable, verdict.INTERRUPTED)
                 return
             workspace.populate(ws, own)
-            built = workspace.build(ws, setup, self.sandbox, self._work_dir(sub.name, "home"),
-                                    self._work_dir(sub.name, "build.log"))
-            if self._stop.is_set():  # the build may have been ended half-way
-                self._fail_all(sub, runnable, verdict.INTERRUPTED)
-                return
-            if not built.ok:
-                for m in runnable:
-                    self._record(Verdict(sub.name, m, False, verdict.build_failed(built.summary),
-                                         cause=causes.of(built.summary, causes.BUILD_FAILED)))
-                return
-            shadowed = workspace.shadowed_modules(ws, self._protected, workspace.course_site(setup))
-            if shadowed:
-                for m in runnable:
-                    self._record(Verdict(sub.name, m, False, "the submission installs Python modules the course "
-                                         "provides, which would replace them: %s (rename them)" % ", ".join(shadowed),
-                                         cause="shadows_course"))
-                return
-            # Read from the grader's own copy of each built package (ws/src is the student's to change).
-            unmade = {p.name: unbuilt.problems(p.path, p.name, os.path.join(ws, "devel")) for p in own if p.name}
-            for m in longest_first(runnable, self._durations):
-                hints = [h for p in packages if p.name in m.packages for h in script_problems(p.path)]
-                first = [h for name in m.packages for h in unmade.get(name, [])]
-                self._submit(self._run, sub, m, built.env, hints, ws, built.student_env, first)
+            order = longest_first(runnable, self._durations)
+            early = self._start_early(sub, order, ws)
+            try:
+                self._build_and_run(sub, runnable, order, packages, own, ws, early)
+            finally:
+                for run in early.values():  # those the build did not open or restart
+                    run.void()
         except Exception:  # noqa: BLE001 - the grader's own failure is this submission's verdict
             if self._stop.is_set():
                 self._fail_all(sub, selected or self.milestones[:1], verdict.INTERRUPTED)
@@ -340,62 +335,170 @@ class Grader:
                 self._fail_all(sub, selected or self.milestones[:1], "the grader failed on this submission:\n%s"
                                % traceback.format_exc(limit=5), "grader_error")
 
+    def _start_early(self, sub: Submission, order: Sequence[Milestone], ws: str) -> Dict[str, EarlyRun]:
+        """The first `early` runs of `order`, started now if no run is under way (early_runs). Only
+        the course's own checks (course_milestones': each passes its gate before anything else)."""
+        with self._lock:
+            if self.options.early <= 0 or self._runs_pending or self._stop.is_set():
+                return {}
+        early: Dict[str, EarlyRun] = {}
+        for m in order[:self.options.early]:
+            if m.test_file and os.path.isabs(m.test_file):
+                continue  # a course's own rostest file: its check may not wait at the gate
+            gate = self._work_dir(sub.name, "gates", m.name)
+            os.makedirs(os.path.dirname(gate), exist_ok=True)
+            if os.path.lexists(gate):
+                os.remove(gate)
+            # Its folders are made here, not in its thread: the build's verdicts may go into the
+            # same artifacts folder while that thread starts.
+            self._run_dirs(sub, m)
+            early[m.name] = EarlyRun(gate)
+            self._submit(self._run_early, sub, m, ws, early[m.name])
+        return early
+
+    def _build_and_run(self, sub: Submission, runnable: Sequence[Milestone], order: Sequence[Milestone],
+                       packages: Sequence[Package], own: Sequence[Package], ws: str,
+                       early: Dict[str, EarlyRun]) -> None:
+        """Build the overlay and start (or open) every runnable milestone's run, or give the
+        build's verdicts. `early`: the runs already started; those left in it are voided."""
+        setup = self._setup
+        built = workspace.build(ws, setup, self.sandbox, self._work_dir(sub.name, "home"),
+                                self._work_dir(sub.name, "build.log"))
+        if self._stop.is_set():  # the build may have been ended half-way
+            self._fail_all(sub, runnable, verdict.INTERRUPTED)
+            return
+        if not built.ok:
+            for m in runnable:
+                self._record(Verdict(sub.name, m, False, verdict.build_failed(built.summary),
+                                     cause=causes.of(built.summary, causes.BUILD_FAILED)))
+            return
+        shadowed = workspace.shadowed_modules(ws, self._protected, workspace.course_site(setup))
+        if shadowed:
+            for m in runnable:
+                self._record(Verdict(sub.name, m, False, "the submission installs Python modules the course "
+                                     "provides, which would replace them: %s (rename them)" % ", ".join(shadowed),
+                                     cause="shadows_course"))
+            return
+        # Read from the grader's own copy of each built package (ws/src is the student's to change).
+        unmade = {p.name: unbuilt.problems(p.path, p.name, os.path.join(ws, "devel")) for p in own if p.name}
+        for m in order:
+            hints = [h for p in packages if p.name in m.packages for h in script_problems(p.path)]
+            first = [h for name in m.packages for h in unmade.get(name, [])]
+            args = (built.env, hints, ws, built.student_env, first)
+            run = early.pop(m.name, None)
+            if run is not None and not run.stale() and not self._stop.is_set() and run.open(
+                    hints, first, functools.partial(self._write_policy, sub, m, ws, built.student_env)):
+                continue
+            if run is not None and run.restart(args):
+                continue
+            self._submit(self._run, sub, m, *args)
+
+    def _run_dirs(self, sub: Submission, m: Milestone) -> Tuple[str, str, str]:
+        """A run's fresh folders: its work folder, the student's home in it (given to the sandbox
+        user), and the artifacts the student is shown."""
+        artifacts = self._student_dir(sub.name, m.name)
+        shutil.rmtree(artifacts, ignore_errors=True)
+        os.makedirs(artifacts)
+        run_dir = self._work_dir(sub.name, "runs", m.name)
+        shutil.rmtree(run_dir, ignore_errors=True)
+        home = os.path.join(run_dir, "student")
+        os.makedirs(os.path.join(home, "log"))
+        self.sandbox.give(home)
+        return run_dir, home, artifacts
+
+    def _write_policy(self, sub: Submission, m: Milestone, ws: Optional[str],
+                      student_env: Optional[Dict[str, str]]) -> str:
+        """The run's sandbox policy, read by its check when it starts the student's processes."""
+        run_dir = self._work_dir(sub.name, "runs", m.name)
+        home = os.path.join(run_dir, "student")
+        policy = self.sandbox.policy([p for p in (ws, home) if p], home, student_env,
+                                     os.path.join(run_dir, SANDBOX_REPORT), disk_folder=self._work_dir(sub.name),
+                                     readable=[run_etc_dir(run_dir)])
+        return policy.write(os.path.join(run_dir, POLICY_FILE))
+
+    def _rostest(self, m: Milestone, run_dir: str, env: Dict[str, str], artifacts: str, **extra: str):
+        package, test_file, args = rostest_of(m, run_dir)
+        run_env = dict(env, **{ARTIFACTS_VAR: artifacts, POLICY_VAR: os.path.join(run_dir, POLICY_FILE)}, **extra)
+        return run_rostest(package, test_file, args=args, env=run_env, results_dir=run_dir,
+                           timeout=self.options.timeout)
+
     def _run(self, sub: Submission, m: Milestone, env: Dict[str, str], hints: List[str], ws: Optional[str],
              student_env: Optional[Dict[str, str]], first: Sequence[str] = ()) -> None:
         """One milestone run: rostest (the master, the simulators, the check: trusted) with the
-        student's processes in a sandbox the check starts from the policy written here. On a
-        failure, `first` (what the package holds but its build did not make: the cause to fix)
-        comes before the check's reason and `hints` after it, each only if the check did not say it."""
+        student's processes in a sandbox the check starts from the policy written here."""
         if self._stop.is_set():
             self._record(Verdict(sub.name, m, False, verdict.INTERRUPTED))
             return
         try:
-            artifacts = self._student_dir(sub.name, m.name)
-            shutil.rmtree(artifacts, ignore_errors=True)
-            os.makedirs(artifacts)
-            run_dir = self._work_dir(sub.name, "runs", m.name)
-            shutil.rmtree(run_dir, ignore_errors=True)
-            home = os.path.join(run_dir, "student")
-            os.makedirs(os.path.join(home, "log"))
-            self.sandbox.give(home)
-            report = os.path.join(run_dir, "sandbox.json")
-            policy = self.sandbox.policy([p for p in (ws, home) if p], home, student_env, report,
-                                         disk_folder=self._work_dir(sub.name), readable=[run_etc_dir(run_dir)])
-            policy_path = policy.write(os.path.join(run_dir, "sandbox_policy.json"))
-            run_env = dict(env, **{ARTIFACTS_VAR: artifacts, POLICY_VAR: policy_path})
-            package, test_file, args = rostest_of(m, run_dir)
-            result = run_rostest(package, test_file, args=args, env=run_env, results_dir=run_dir,
-                                 timeout=self.options.timeout)
-            with open(os.path.join(artifacts, "rostest.txt"), "w") as f:
-                f.write(result.output)
-            if self._stop.is_set() and not result.passed:  # ended by the interruption: no verdict
-                self._record(Verdict(sub.name, m, False, verdict.INTERRUPTED, elapsed=0.0))
-                return
-            hits = verdict.sandbox_hits(report)
-            passed = result.passed and not verdict.ended_by_limit(hits)
-            reason = "" if passed else verdict.ENDED_BY_LIMIT if result.passed else result.summary()
-            if not result.passed:
-                hints = hints + verdict.output_hints(artifacts, hints) + verdict.output_capped(artifacts)
-                reason = "\n".join([h for h in first if h.split(" (")[0] not in reason] + [reason]
-                                   + [h for h in hints if h not in reason])
-            copy_logs(os.path.join(home, "log"), os.path.join(artifacts, "ros_log"))
-            verdict.trim_files(artifacts)
-            verdict.trim_files(run_dir, skip=home)  # the student's home is theirs: never written by us
-            # Its logs are copied: what the run wrote no longer counts in the student's disk bound.
-            shutil.rmtree(home, ignore_errors=True)
-            cause = "" if passed else _run_cause(result.passed, result.timed_out, first, causes.recorded(artifacts),
-                                                 hints)
-            # what the student reads quotes their files from their package down, not the grader's folders
-            hide = [os.path.join(ws, "src") if ws else "", self._work_dir(sub.name), self.options.out]
-            self._record(Verdict(sub.name, m, passed, verdict.without_grader_paths(reason, hide),
-                                 verdict.without_grader_paths(verdict.log_tails(artifacts), hide),
-                                 result.elapsed, artifacts, verdict.sandbox_notes(hits), cause))
+            run_dir, home, artifacts = self._run_dirs(sub, m)
+            self._write_policy(sub, m, ws, student_env)
+            result = self._rostest(m, run_dir, env, artifacts)
+            self._judge(sub, m, result, ws, hints, first)
         except Exception:  # noqa: BLE001
-            if self._stop.is_set():
-                self._record(Verdict(sub.name, m, False, verdict.INTERRUPTED))
-            else:
-                self._record(Verdict(sub.name, m, False, "the grader failed on this milestone:\n%s"
-                                     % traceback.format_exc(limit=5), cause="grader_error"))
+            self._grader_failed(sub, m)
+
+    def _run_early(self, sub: Submission, m: Milestone, ws: str, early: EarlyRun) -> None:
+        """A run started while the submission builds (early_runs): its check waits at the gate;
+        the build thread decides whether it counts, is void, or starts again."""
+        result = None
+        try:
+            env = sandboxing.overlay_paths(workspace.trusted_base_env(), ws)  # what the build will give
+            result = self._rostest(m, self._work_dir(sub.name, "runs", m.name), env,
+                                   self._student_dir(sub.name, m.name), **{GATE_VAR: early.gate})
+        except Exception:  # noqa: BLE001 - judged below if the run counts
+            pass
+        outcome = early.ended()
+        if outcome == RESTART:
+            self._run(sub, m, *early.restart_args)
+        elif outcome == GO:
+            if result is None:
+                self._grader_failed(sub, m)
+                return
+            try:
+                self._judge(sub, m, result._replace(elapsed=max(0.0, result.elapsed - early.waited())), ws,
+                            early.hints, early.first)
+            except Exception:  # noqa: BLE001
+                self._grader_failed(sub, m)
+
+    def _grader_failed(self, sub: Submission, m: Milestone) -> None:
+        if self._stop.is_set():
+            self._record(Verdict(sub.name, m, False, verdict.INTERRUPTED))
+        else:
+            self._record(Verdict(sub.name, m, False, "the grader failed on this milestone:\n%s"
+                                 % traceback.format_exc(limit=5), cause="grader_error"))
+
+    def _judge(self, sub: Submission, m: Milestone, result, ws: Optional[str], hints: List[str],
+               first: Sequence[str]) -> None:
+        """The run's verdict. On a failure, `first` (what the package holds but its build did not
+        make: the cause to fix) comes before the check's reason and `hints` after it, each only if
+        the check did not say it."""
+        run_dir = self._work_dir(sub.name, "runs", m.name)
+        home = os.path.join(run_dir, "student")
+        artifacts = self._student_dir(sub.name, m.name)
+        with open(os.path.join(artifacts, "rostest.txt"), "w") as f:
+            f.write(result.output)
+        if self._stop.is_set() and not result.passed:  # ended by the interruption: no verdict
+            self._record(Verdict(sub.name, m, False, verdict.INTERRUPTED, elapsed=0.0))
+            return
+        hits = verdict.sandbox_hits(os.path.join(run_dir, SANDBOX_REPORT))
+        passed = result.passed and not verdict.ended_by_limit(hits)
+        reason = "" if passed else verdict.ENDED_BY_LIMIT if result.passed else result.summary()
+        if not result.passed:
+            hints = hints + verdict.output_hints(artifacts, hints) + verdict.output_capped(artifacts)
+            reason = "\n".join([h for h in first if h.split(" (")[0] not in reason] + [reason]
+                               + [h for h in hints if h not in reason])
+        copy_logs(os.path.join(home, "log"), os.path.join(artifacts, "ros_log"))
+        verdict.trim_files(artifacts)
+        verdict.trim_files(run_dir, skip=home)  # the student's home is theirs: never written by us
+        # Its logs are copied: what the run wrote no longer counts in the student's disk bound.
+        shutil.rmtree(home, ignore_errors=True)
+        cause = "" if passed else _run_cause(result.passed, result.timed_out, first, causes.recorded(artifacts),
+                                             hints)
+        # what the student reads quotes their files from their package down, not the grader's folders
+        hide = [os.path.join(ws, "src") if ws else "", self._work_dir(sub.name), self.options.out]
+        self._record(Verdict(sub.name, m, passed, verdict.without_grader_paths(reason, hide),
+                             verdict.without_grader_paths(verdict.log_tails(artifacts), hide),
+                             result.elapsed, artifacts, verdict.sandbox_notes(hits), cause))
 
     # -- results ----------------------------------------------------------------------------
     def _expect(self, sub: Submission, count: int) -> None:

@@ -21,6 +21,7 @@ from typing import Dict, Iterable, List, NamedTuple, Optional, Sequence, Set
 from course_milestones import causes
 from course_sandbox import env_paths
 from course_sandbox.run import LimitHits, capture_oneshot, run_oneshot
+from course_checks import run_gate
 from course_checks.isolation import sourced_env
 
 from course_grader import build_errors, build_order
@@ -130,7 +131,7 @@ def course_environment(setup_bash: str, env: Optional[Dict[str, str]] = None) ->
 def trusted_base_env() -> Dict[str, str]:
     """The grader's environment less what no build or run should inherit."""
     env = dict(os.environ)
-    for key in ("ROS_MASTER_URI", "COURSE_ARTIFACTS_DIR", "COURSE_SANDBOX_POLICY", "DISPLAY"):
+    for key in ("ROS_MASTER_URI", "COURSE_ARTIFACTS_DIR", "COURSE_SANDBOX_POLICY", run_gate.ENV_VAR, "DISPLAY"):
         env.pop(key, None)
     return env
 

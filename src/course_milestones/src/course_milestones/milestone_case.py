@@ -6,8 +6,16 @@ turns that off here, once. A message that is a causes.Finding records its cause 
 (in the run's artifacts folder) when the assertion fails; a check of the course's own tools (no
 student package) names the cause of its every failure once, as `failure_cause`. Where a check
 cannot call self.fail (a setUpClass, a helper without the test case), it raises `failure(...)`.
+
+Every check's class set-up first passes the run's gate (course_checks.run_gate): a run the grader
+started while the student's overlay was still building waits there, before any check code that
+looks at the student's packages; a voided run ends there, its tests skipped. Subclasses need not
+call super(): each setUpClass a subclass defines is wrapped when the class is made.
 """
+import functools
 import unittest
+
+from course_checks import run_gate
 
 from course_milestones import causes
 from course_checks.artifacts import artifact_dir
@@ -26,6 +34,17 @@ def failure(message: str) -> AssertionError:
     return AssertionError(message)
 
 
+@functools.lru_cache(maxsize=1)
+def _gate_open() -> bool:
+    """Whether this run goes on: asked once per process (several classes, one gate)."""
+    return run_gate.wait()
+
+
+def _pass_gate() -> None:
+    if not _gate_open():
+        raise unittest.SkipTest("the grader voided this run before it began (its results are discarded)")
+
+
 class MilestoneCase(unittest.TestCase):
     """A check's test case whose failure message is the message given to the assertion, alone."""
 
@@ -33,6 +52,22 @@ class MilestoneCase(unittest.TestCase):
     # The cause of a failure whose message carries none: set only by the checks of the course's own
     # tools, whose assertions keep unittest's words (course_tools).
     failure_cause = ""
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        own = cls.__dict__.get("setUpClass")
+        if isinstance(own, classmethod):
+            body = own.__func__
+
+            @functools.wraps(body)
+            def gated(klass):
+                _pass_gate()
+                body(klass)
+            cls.setUpClass = classmethod(gated)
+
+    @classmethod
+    def setUpClass(cls):
+        _pass_gate()
 
     def _formatMessage(self, msg, standardMsg):  # unittest calls it only for a failing assertion
         _record(msg, self.failure_cause)

@@ -6,15 +6,22 @@ header), the header ({"op": "image", "topic", "format", "width", "height", "stam
 picture. A 500x500 turtlesim canvas is ~750 kB raw and ~1 MB as rosbridge's base64 JSON; as
 JPEG it is ~15-25 kB, which is what makes 20+ fps to many viewers affordable. Pillow (Debian's
 python3-pil) compresses, because it needs no Qt application and releases the GIL while it works.
+
+Pillow is imported on the first picture, not with this module: lab_view imports this module at
+start, and Pillow (with its C library and the image libraries it links) costs about 1.5 MiB of
+resident memory in every student's container, while the page itself asks for no picture (it draws
+the turtlesim canvas from ~scene); only a camera panel or a rosbridge client asking "compression"
+does.
 """
 from __future__ import annotations
 
 import io
 import json
 import struct
-from typing import Any, Dict, Tuple
+from typing import TYPE_CHECKING, Any, Dict, Tuple
 
-from PIL import Image
+if TYPE_CHECKING:
+    from PIL import Image
 
 # ROS encodings Pillow can take as they are: (Pillow mode, bytes per pixel, channel swap).
 ENCODINGS = {
@@ -31,6 +38,7 @@ class FrameError(ValueError):
 
 def to_picture(encoding: str, width: int, height: int, step: int, data: bytes) -> Image.Image:
     """The raw image as a Pillow picture."""
+    from PIL import Image  # imported here: see the module docstring
     if encoding not in ENCODINGS:
         raise FrameError("image encoding %r is not drawn (known: %s)" % (encoding, ", ".join(sorted(ENCODINGS))))
     mode, depth, raw_mode = ENCODINGS[encoding]

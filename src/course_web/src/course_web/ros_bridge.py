@@ -6,7 +6,9 @@ every client's outbox: the ROS callback never waits for a client. Publishers are
 same way. Each service call runs on a thread of its own (a client may have only a few waiting, see
 course_web.protocol), so a service that never answers delays only its caller's reply. Types come from the request, or from the master when the request leaves them out, and a
 request that contradicts the master (another type on the same topic) is refused, because rospy
-would otherwise connect nothing and say nothing.
+would otherwise connect nothing and say nothing. A service's type, which the master does not know,
+is asked of the service itself (course_web.service_probe: rosservice's probe without importing
+rosservice).
 """
 from __future__ import annotations
 
@@ -18,10 +20,9 @@ from typing import Any, Dict, Hashable, Optional, Set, Tuple, Type
 import genpy
 import rosgraph
 import rospy
-import rosservice
 
 from course_net.rpc import TimedTransport
-from course_web import frames
+from course_web import frames, service_probe
 from course_web.introspect import ApiError
 from course_web.convert import ConversionError, json_to_message, message_class, message_to_json, service_class
 from course_web.protocol import Bridge, Deliver, RequestError, ServiceDone, publish_frame
@@ -30,6 +31,7 @@ IMAGE_TYPE = "sensor_msgs/Image"
 CALLER_ID = "/course_web"
 NODE_TIMEOUT_S = 1.0  # a node's XML-RPC answer to getPid (the page's health asks the canvas's publishers)
 MASTER_TIMEOUT_S = 5.0
+SERVICE_PROBE_TIMEOUT_S = 5.0  # a service's node asked its type (rosservice's own timeout)
 SUBSCRIBER_QUEUE = 10
 
 
@@ -202,8 +204,7 @@ class RosBridge(Bridge):
     def _call(self, service: str, type_name: Optional[str], args: Any, done: ServiceDone) -> None:
         try:
             values = self._call_values(service, type_name, args)
-        except (RequestError, ConversionError, rospy.ServiceException, rosservice.ROSServiceException,
-                rospy.ROSException, OSError) as err:
+        except (RequestError, ConversionError, rospy.ServiceException, rospy.ROSException, OSError) as err:
             done(False, str(err))
         except Exception as err:  # noqa: BLE001 - a reply is owed whatever went wrong
             done(False, "%s: %r" % (service, err))
@@ -212,9 +213,7 @@ class RosBridge(Bridge):
 
     def _call_values(self, service: str, type_name: Optional[str], args: Any) -> Dict[str, Any]:
         if not type_name:
-            type_name = rosservice.get_service_type(service)
-            if not type_name:
-                raise RequestError("unknown service %s" % service)
+            type_name = self.service_type(service)
         cls = service_class(type_name)
         if cls is None:
             raise RequestError("unknown service type %r" % type_name)
@@ -226,6 +225,17 @@ class RosBridge(Bridge):
         request = json_to_message(args, request_cls, message_class)
         response = rospy.ServiceProxy(service, cls)(request)
         return message_to_json(response)
+
+    def service_type(self, service: str) -> str:
+        """The type the service's node says it has (raises RequestError when no node provides it,
+        service_probe.ServiceProbeError when the node does not answer)."""
+        try:
+            uri = self.master.service_uri(service)
+        except ApiError as err:
+            raise RequestError(str(err))
+        if uri is None:
+            raise RequestError("unknown service %s" % service)
+        return service_probe.service_type(service, uri, CALLER_ID, SERVICE_PROBE_TIMEOUT_S)
 
     def shutdown(self) -> None:
         """Nothing to wait for: a call still running is on a daemon thread."""
@@ -240,16 +250,26 @@ class RosMaster:
         self._lock = threading.Lock()
         self._addresses: Dict[str, str] = {}  # node -> its XML-RPC URI, as the master last said
 
-    def _ask(self, question: str, *args: Any) -> Any:
+    def _call(self, question: str, *args: Any) -> Tuple[str, int, str, Any]:
+        """(the master's URI, and its code, message and value for `question`)."""
         uri = rosgraph.get_master_uri()
         try:
             proxy = xmlrpc.client.ServerProxy(uri, transport=TimedTransport(MASTER_TIMEOUT_S))
             code, message, value = getattr(proxy, question)(CALLER_ID, *args)
         except (OSError, xmlrpc.client.Error, http.client.HTTPException, ValueError, TypeError) as err:
             raise ApiError("the ROS master at %s does not answer: %s" % (uri, err), 503)
+        return uri, code, message, value
+
+    def _ask(self, question: str, *args: Any) -> Any:
+        uri, code, message, value = self._call(question, *args)
         if code != 1:
             raise ApiError("the ROS master at %s refused %s: %s" % (uri, question, message), 503)
         return value
+
+    def service_uri(self, service: str) -> Optional[str]:
+        """The service's rosrpc:// address, or None when no node provides it."""
+        _uri, code, _message, value = self._call("lookupService", service)
+        return value if code == 1 and value else None
 
     def system_state(self) -> Any:
         return self._ask("getSystemState")

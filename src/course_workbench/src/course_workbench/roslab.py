@@ -34,7 +34,7 @@ from typing import Dict, List, Optional, Sequence
 
 from course_net.ports import free_port
 from course_net.rpc import TimedTransport
-from course_workbench.startup import DEFAULT_MASTER_URI, TOKEN_VAR
+from course_workbench.names import DEFAULT_MASTER_URI, TOKEN_VAR
 
 CALLER_ID = "/workbench_roslab"
 LAB_VIEW_NAME = "workbench_lab_view"  # not /lab_view: the student may run their own

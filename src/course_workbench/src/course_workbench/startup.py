@@ -34,9 +34,10 @@ import rospkg
 
 from course_sandbox import env_paths
 
+from course_workbench.names import DEFAULT_MASTER_URI, TOKEN_VAR
+
 DEFAULT_PORT = 8888
 DEFAULT_ADDRESS = "127.0.0.1"
-DEFAULT_MASTER_URI = "http://localhost:11311"
 TOKEN_BYTES = 24
 PROXY_TIMEOUT_S = 60.0
 # Variables a sourced workspace sets to one of its folders (the course's env hook sets ROS_ROOT).
@@ -46,7 +47,6 @@ WORKSPACE_MARKERS = (".catkin", ".catkin_workspace")
 # What reaches the terminals and the lab page: where the course's setup.bash and the overlay are.
 SETUP_VAR = "COURSE_WORKBENCH_SETUP"
 OVERLAY_VAR = "COURSE_WORKBENCH_OVERLAY"
-TOKEN_VAR = "COURSE_WORKBENCH_TOKEN"  # the lab page's copy of Jupyter's token (roslab only)
 # The desktop (jupyter-remote-desktop-proxy at <base>/desktop/): the X session its vncserver runs
 # (the package reads this variable), and the file where that session writes its display, which
 # the terminals read (config/terminal.bashrc).

@@ -57,10 +57,9 @@ PID_FILE = "grading.pid"  # in WORK_DIR: the pid of the grading that writes this
 KEPT_IN_WORK = ("durations.json", PID_FILE)
 # While interrupted: how often the processes below the grader are looked for and killed again.
 INTERRUPT_POLL_S = 0.2
-# In each run's work folder: the sandbox policy its check reads, the sandbox's report, the gate.
+# In each run's work folder: the sandbox policy its check reads, and the sandbox's report.
 POLICY_FILE = "sandbox_policy.json"
 SANDBOX_REPORT = "sandbox.json"
-GATE_FILE = "gate"
 
 
 def rostest_of(m: Milestone, run_dir: str) -> Tuple[str, str, List[str]]:

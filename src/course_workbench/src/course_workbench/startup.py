@@ -148,6 +148,15 @@ class Course:
     def config_file(self, name: str) -> str:
         return os.path.join(self.package, "config", name)
 
+    def jupyter_command(self, hub: bool) -> List[str]:
+        """What runs the student's JupyterLab, before its --config: `jupyter-lab`, or under a hub
+        jupyterhub-singleuser through venv/singleuser.py (its hub database layer without alembic,
+        10.4 MiB less in every student's container)."""
+        if hub:
+            return [os.path.join(self.jupyter_venv, "bin", "python3"),
+                    os.path.join(self.package, "venv", "singleuser.py")]
+        return [os.path.join(self.jupyter_venv, "bin", "jupyter-lab")]
+
 
 def source_command(setup: str, then: str) -> List[str]:
     return ["bash", "-c", "source %s && %s" % (shlex.quote(setup), then)]
@@ -255,9 +264,10 @@ def main(argv: Optional[Sequence[str]] = None, env: Optional[Mapping[str, str]] 
         if args.prepare_only:
             print("workbench: %s is ready" % args.overlay, flush=True)
             return 0
-        jupyter_lab = os.path.join(course.jupyter_venv, "bin", "jupyterhub-singleuser" if hub else "jupyter-lab")
-        if not os.access(jupyter_lab, os.X_OK):
-            raise StartError("JupyterLab is not installed (%s is missing): run `make deps`" % jupyter_lab)
+        jupyter_lab = course.jupyter_command(hub)
+        needed = os.path.join(course.jupyter_venv, "bin", "jupyterhub-singleuser" if hub else "jupyter-lab")
+        if not os.access(needed, os.X_OK):
+            raise StartError("JupyterLab is not installed (%s is missing): run `make deps`" % needed)
     except StartError as err:
         print("workbench: %s" % err, file=sys.stderr, flush=True)
         return 2
@@ -281,5 +291,5 @@ def main(argv: Optional[Sequence[str]] = None, env: Optional[Mapping[str, str]] 
             args.address, port, root_dir, args.overlay), flush=True)
         print("workbench: open %s" % page_url(args.address, port, token, args.url_host), flush=True)
     os.chdir(root_dir)  # where a terminal opened by the REST API starts (JupyterLab's own pass a folder)
-    os.execve(jupyter_lab, [jupyter_lab, "--config=%s" % config], base)
+    os.execve(jupyter_lab[0], jupyter_lab + ["--config=%s" % config], base)
     return 0  # not reached

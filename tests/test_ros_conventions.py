@@ -43,6 +43,8 @@ ROSDEP_KEYS = {
     "firstuseauthenticator": "python3-jupyterhub-firstuseauthenticator",  # PyPI: tools/rosdep.yaml
     "dockerspawner": "python3-dockerspawner",  # PyPI: tools/rosdep.yaml
     "traitlets": "python3-traitlets",
+    # the students' JupyterLab venv (.venv-jupyter): course_workbench/venv/singleuser.py runs there
+    "jupyterhub": "python3-jupyterhub",  # PyPI: tools/rosdep.yaml
 }
 # ROS packages whose Python module has the package's name (Debian's ROS, or ours).
 ROS_MODULES = {"rospy", "rosgraph", "roslib", "roslaunch", "rostest", "rosnode", "rosservice",

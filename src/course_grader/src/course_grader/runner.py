@@ -42,7 +42,7 @@ from course_checks.run_gate import ENV_VAR as GATE_VAR
 from course_sandbox import leftovers, procs
 from course_sandbox.policy import ENV_VAR as POLICY_VAR, Limits
 
-from course_grader import gradescope, sandboxing, submissions, verdict, workspace
+from course_grader import gradescope, submissions, verdict, workspace
 from course_grader.early_runs import GO, RESTART, EarlyRun
 from course_grader.class_outputs import WORK_DIR
 from course_grader.sandboxing import SandboxPlan
@@ -441,8 +441,7 @@ class Grader:
         the build thread decides whether it counts, is void, or starts again."""
         result = None
         try:
-            env = sandboxing.overlay_paths(workspace.trusted_base_env(), ws)  # what the build will give
-            result = self._rostest(m, self._work_dir(sub.name, "runs", m.name), env,
+            result = self._rostest(m, self._work_dir(sub.name, "runs", m.name), workspace.trusted_env(ws),
                                    self._student_dir(sub.name, m.name), **{GATE_VAR: early.gate})
         except Exception:  # noqa: BLE001 - judged below if the run counts
             pass

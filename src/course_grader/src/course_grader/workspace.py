@@ -136,6 +136,12 @@ def trusted_base_env() -> Dict[str, str]:
     return env
 
 
+def trusted_env(ws: str) -> Dict[str, str]:
+    """The environment of the trusted side (rostest, the checks) for the overlay `ws`: computed
+    from the path alone, so a run started before the build ends (early_runs) gets the same."""
+    return overlay_paths(trusted_base_env(), ws)
+
+
 def build(ws: str, setup_bash: str, plan: SandboxPlan, home: str, log_path: str,
           timeout: float = BUILD_TIMEOUT_S) -> BuildResult:
     """catkin_make in `ws` on top of the course workspace, in a sandbox of its own (CMake runs
@@ -168,7 +174,7 @@ def build(ws: str, setup_bash: str, plan: SandboxPlan, home: str, log_path: str,
     student_env = parse_env(out) if code == 0 else None
     if not student_env:
         return BuildResult(False, log_path, "sourcing the overlay's devel/setup.bash failed (exit code %s)" % code, None)
-    return BuildResult(True, log_path, "", overlay_paths(trusted_base_env(), ws), student_env)
+    return BuildResult(True, log_path, "", trusted_env(ws), student_env)
 
 
 def _tail(path: str, size: int = 200_000) -> str:

@@ -40,40 +40,34 @@ class OneShotNode:
         self.thread.join(TIMEOUT_S)
         self.server.close()
 
+    def __enter__(self) -> "OneShotNode":
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
 
 def test_the_node_says_its_type_to_a_probe():
-    node = OneShotNode({"type": "std_srvs/Trigger", "md5sum": "937c9679a518e3a18d831e57125ea522",
-                        "callerid": "/turtlesim"})
-    try:
+    with OneShotNode({"type": "std_srvs/Trigger", "md5sum": "937c9679a518e3a18d831e57125ea522",
+                     "callerid": "/turtlesim"}) as node:
         assert service_type("/turtlesim/canvas", node.uri, "/course_web", TIMEOUT_S) == "std_srvs/Trigger"
-    finally:
-        node.close()
     sent = node.received[0]
     for field in (b"probe=1", b"md5sum=*", b"callerid=/course_web", b"service=/turtlesim/canvas"):
         assert field in sent
 
 
 def test_a_header_without_a_type_is_an_error():
-    node = OneShotNode({"callerid": "/somebody"})
-    try:
+    with OneShotNode({"callerid": "/somebody"}) as node:
         assert probe_header("/s", node.uri, "/course_web", TIMEOUT_S) == {"callerid": "/somebody"}
-    finally:
-        node.close()
-    node = OneShotNode({"callerid": "/somebody"})
-    try:
+    with OneShotNode({"callerid": "/somebody"}) as node:
         with pytest.raises(ServiceProbeError, match="did not say its type"):
             service_type("/s", node.uri, "/course_web", TIMEOUT_S)
-    finally:
-        node.close()
 
 
 def test_a_node_that_hangs_up_is_an_error():
-    node = OneShotNode(None)
-    try:
+    with OneShotNode(None) as node:
         with pytest.raises(ServiceProbeError, match="/s at rosrpc://127.0.0.1:[0-9]+ does not answer"):
             service_type("/s", node.uri, "/course_web", TIMEOUT_S)
-    finally:
-        node.close()
 
 
 def test_nothing_listening_and_a_bad_address_are_errors():

@@ -1,6 +1,7 @@
-"""Under a hub the workbench runs jupyterhub-singleuser through venv/singleuser.py, whose hub
-database layer comes without alembic (10.4 MiB in every student's container) until something
-uses it; then the real alembic answers, for jupyterhub.orm and for everyone else."""
+"""Under a hub the workbench runs jupyterhub-singleuser through venv/singleuser.py, which loads
+the hub's database layer (SQLAlchemy, jupyterhub.orm, alembic: 28 MiB in every student's
+container) only when something uses it; then the real ones answer, for the hub's modules and for
+everyone else."""
 from __future__ import annotations
 
 import json
@@ -19,10 +20,12 @@ needs_venv = pytest.mark.skipif(not os.path.isfile(os.path.join(COURSE.jupyter_v
                                 reason="no .venv-jupyter with jupyterhub (make deps)")
 
 
-def in_venv(code: str) -> dict:
-    """What `code`, run by .venv-jupyter's python after the entry script's set-up, prints as JSON."""
+def in_venv(*code: str) -> dict:
+    """What `code` (its parts one after another), run by .venv-jupyter's python after the entry
+    script's set-up, prints as JSON."""
     prelude = "import json, runpy, sys\nentry = runpy.run_path(%r, run_name='entry')\n" % SCRIPT
-    done = subprocess.run([PYTHON, "-c", prelude + textwrap.dedent(code)], capture_output=True, text=True,
+    program = prelude + "".join(textwrap.dedent(part) for part in code)
+    done = subprocess.run([PYTHON, "-c", program], capture_output=True, text=True,
                           timeout=120, env=dict(os.environ, PYTHONPATH=""))
     assert done.returncode == 0, done.stderr[-3000:]
     return json.loads(done.stdout.strip().splitlines()[-1])
@@ -34,37 +37,174 @@ def test_the_hub_s_command_is_the_entry_script_and_without_a_hub_jupyter_lab():
 
 
 @needs_venv
-def test_the_single_user_server_loads_without_alembic():
-    found = in_venv("""
-        entry["import_orm_without_alembic"]()
-        import jupyterhub.singleuser, jupyterhub.orm
-        print(json.dumps({"alembic": sorted(m for m in sys.modules if m.split(".")[0] == "alembic"),
-                          "singleuser": "jupyterhub.singleuser.extension" in sys.modules}))
-    """)
-    assert found == {"alembic": [], "singleuser": True}
-
-
-@needs_venv
 def test_what_jupyterhub_orm_does_with_alembic_gets_the_real_alembic():
     found = in_venv("""
-        entry["import_orm_without_alembic"]()
+        entry["Deferral"]().import_entry()
+        import jupyterhub.singleuser
         from jupyterhub import orm
+        before = "alembic" in sys.modules
         import alembic.config, alembic.script
         print(json.dumps({
+            "before": before,
             "config": orm.alembic.config.Config is alembic.config.Config,
             "command": orm.alembic.command.stamp.__module__,
             "scripts": orm.ScriptDirectory.from_config.__func__ is alembic.script.ScriptDirectory.from_config.__func__,
             "real": type(sys.modules["alembic"]).__name__,
         }))
     """)
-    assert found == {"config": True, "command": "alembic.command", "scripts": True, "real": "module"}
+    assert found == {"before": False, "config": True, "command": "alembic.command", "scripts": True, "real": "module"}
+
+
+LOADED = """
+    def loaded():
+        return {top: top in sys.modules for top in ("sqlalchemy", "jupyterhub.orm", "alembic")}
+    """
 
 
 @needs_venv
-def test_with_jupyterhub_orm_loaded_already_nothing_is_deferred():
-    found = in_venv("""
-        import jupyterhub.orm
-        entry["import_orm_without_alembic"]()
-        print(json.dumps("alembic.command" in sys.modules))
+def test_the_single_user_server_loads_without_the_hub_s_database_layer():
+    found = in_venv(LOADED, """
+        deferral = entry["Deferral"]()
+        deferral.import_entry()
+        import jupyterhub.singleuser, jupyterhub.utils, jupyterhub.scopes
+        stand_ins = sorted(n for n, m in sys.modules.items() if type(m).__name__ == "StandIn")
+        print(json.dumps({"loaded": loaded(), "fell back": deferral.fell_back, "stand-ins in sys.modules": stand_ins,
+                          "extension": "jupyterhub.singleuser.extension" in sys.modules,
+                          "placeholder": jupyterhub.utils.SQLAlchemyError.__module__}))
     """)
-    assert found is True
+    assert found == {"loaded": {"sqlalchemy": False, "jupyterhub.orm": False, "alembic": False},
+                     "fell back": False, "stand-ins in sys.modules": [], "extension": True, "placeholder": "entry"}
+
+
+SWAPPED = """
+    def swapped():
+        import sqlalchemy, sqlalchemy.exc
+        from jupyterhub import roles, scopes, spawner, user, utils
+        from jupyterhub.handlers import base
+        found = {
+            "loaded": loaded(),
+            "errors": utils.SQLAlchemyError is base.SQLAlchemyError is sqlalchemy.exc.SQLAlchemyError,
+            "functions": roles.func is sqlalchemy.func and spawner.inspect is user.inspect is sqlalchemy.inspect,
+            "sqlalchemy": scopes.sa is sqlalchemy,
+        }
+        orm = sys.modules.get("jupyterhub.orm")
+        if orm is None:
+            found["orm"] = [type(m.orm).__name__ for m in (scopes, roles, user, sys.modules["jupyterhub"])]
+        else:
+            found["orm"] = scopes.orm is roles.orm is user.orm is sys.modules["jupyterhub"].orm is orm
+            found["orm classes"] = isinstance(orm.User, type)
+        return found
+    """
+SQLALCHEMY_REAL = {"errors": True, "functions": True, "sqlalchemy": True}
+ALL_REAL = dict(SQLALCHEMY_REAL, loaded={"sqlalchemy": True, "jupyterhub.orm": True, "alembic": False}, orm=True,
+                **{"orm classes": True})
+NOTHING = {"sqlalchemy": False, "jupyterhub.orm": False, "alembic": False}
+
+
+@needs_venv
+@pytest.mark.parametrize("first_use", [
+    "from jupyterhub import scopes; scopes.orm.User",           # a module stand-in
+    "import jupyterhub.orm",                                     # somebody else's import of the ORM
+    "from jupyterhub.objects import Server; Server()",          # traitlets' Instance('jupyterhub.orm.Server')
+])
+def test_the_first_use_of_the_orm_loads_the_real_ones_everywhere_a_stand_in_was(first_use):
+    found = in_venv(LOADED, SWAPPED, """
+        entry["Deferral"]().import_entry()
+        import jupyterhub.singleuser
+        before = loaded()
+        %s
+        print(json.dumps(dict(swapped(), before=before)))
+    """ % first_use)
+    assert found == dict(ALL_REAL, before=NOTHING)
+
+
+@needs_venv
+@pytest.mark.parametrize("first_use", [
+    "from jupyterhub import roles; roles.func.count",           # a function's Deferred
+    "from jupyterhub import scopes; scopes.sa.select",          # the module stand-in
+    "import sqlalchemy.exc",                                     # somebody else's import
+])
+def test_the_first_use_of_sqlalchemy_loads_it_everywhere_and_the_orm_stays_deferred(first_use):
+    found = in_venv(LOADED, SWAPPED, """
+        entry["Deferral"]().import_entry()
+        import jupyterhub.singleuser
+        %s
+        first = swapped()
+        from jupyterhub import scopes
+        scopes.orm.Role
+        print(json.dumps({"first": first, "then": swapped()}))
+    """ % first_use)
+    assert found == {"first": dict(SQLALCHEMY_REAL, loaded={"sqlalchemy": True, "jupyterhub.orm": False, "alembic": False},
+                                   orm=["StandIn"] * 4),
+                     "then": ALL_REAL}
+
+
+@needs_venv
+def test_after_the_swap_the_hub_s_except_clauses_catch_sqlalchemy_s_errors():
+    found = in_venv("""
+        entry["Deferral"]().import_entry()
+        import jupyterhub.singleuser
+        from jupyterhub import utils
+        from jupyterhub.objects import Server
+        caught = []
+        try:
+            import sqlalchemy.exc
+            raise sqlalchemy.exc.OperationalError("SELECT 1", {}, OSError("disk gone"))
+        except utils.SQLAlchemyError as error:
+            caught.append(type(error).__name__)
+        trait = Server.class_traits()["orm_server"]
+        Server()
+        from jupyterhub import orm
+        print(json.dumps({"caught": caught, "trait": trait.klass is orm.Server}))
+    """)
+    assert found == {"caught": ["OperationalError"], "trait": True}
+
+
+@needs_venv
+def test_a_name_nobody_deferred_means_the_upstream_import():
+    found = in_venv(LOADED, """
+        deferral = entry["Deferral"](placeholders={})
+        deferral.import_entry()
+        import jupyterhub.singleuser, jupyterhub.utils, sqlalchemy.exc
+        left = sorted(n for n, m in sys.modules.items() if type(m).__name__ == "StandIn")
+        print(json.dumps({"fell back": deferral.fell_back, "loaded": loaded(), "left": left,
+                          "real error": jupyterhub.utils.SQLAlchemyError is sqlalchemy.exc.SQLAlchemyError,
+                          "watching": any(type(f).__name__ == "Watcher" for f in sys.meta_path)}))
+    """)
+    assert found == {"fell back": True, "loaded": {"sqlalchemy": True, "jupyterhub.orm": True, "alembic": False},
+                     "left": [], "real error": True, "watching": True}
+
+
+@needs_venv
+def test_with_sqlalchemy_loaded_already_nothing_is_deferred():
+    found = in_venv(LOADED, """
+        import sqlalchemy
+        deferral = entry["Deferral"]()
+        deferral.import_entry()
+        import jupyterhub.singleuser, jupyterhub.utils, sqlalchemy.exc
+        print(json.dumps({"fell back": deferral.fell_back,
+                          "real error": jupyterhub.utils.SQLAlchemyError is sqlalchemy.exc.SQLAlchemyError}))
+    """)
+    assert found == {"fell back": True, "real error": True}
+
+
+@needs_venv
+def test_threads_using_stand_ins_at_once_load_sqlalchemy_once():
+    found = in_venv(LOADED, SWAPPED, """
+        import threading
+        entry["Deferral"]().import_entry()
+        import jupyterhub.singleuser
+        from jupyterhub import roles, scopes, utils
+        start = threading.Barrier(3)
+        def use(get):
+            start.wait()
+            get()
+        uses = [lambda: scopes.orm.User, lambda: roles.func.count, lambda: __import__("sqlalchemy.exc")]
+        threads = [threading.Thread(target=use, args=(get,)) for get in uses]
+        for thread in threads:
+            thread.start()
+        for thread in threads:
+            thread.join()
+        print(json.dumps(swapped()))
+    """)
+    assert found == ALL_REAL

@@ -22,6 +22,11 @@ that is not None (almost none has one). A second finder loads catkin_pkg.conditi
 `import pyparsing` answered by a stand-in (its `__import__` only: pyparsing is neither refused nor
 replaced for anyone else); the first attribute asked of the stand-in imports pyparsing and puts it
 in the module's globals, in place of the stand-in. See docs/rospy_limits.md.
+
+Likewise ssl (0.8 MiB a process): xmlrpc.client imports http.client, and xml.sax.saxutils (roslaunch,
+rosmaster) urllib.request, whose `import ssl` serve only functions (HTTPS). Two more finders of the
+second's kind give each of those modules a stand-in for ssl, which imports the real ssl on first
+use. Anyone else's `import ssl` is the real one.
 """
 import builtins
 import sys
@@ -200,21 +205,14 @@ class NumpyDeferral(OneModuleDeferral):
                 pass
 
 
-# -- pyparsing, for catkin_pkg.condition --------------------------------------------------------
-
-CONDITION = "catkin_pkg.condition"
-PYPARSING = "pyparsing"
-# What catkin_pkg.condition takes from pyparsing by name at module level (`from pyparsing import
-# infixNotation`; operatorPrecedence before pyparsing 1.5.7): functions it only calls, later.
-DEFERRED_FUNCTIONS = ("infixNotation", "operatorPrecedence")
-
+# -- a dependency imported at module level but used only in functions ---------------------------
 
 class LazyFunction:
-    """Stands in a module's globals for one of pyparsing's functions until pyparsing is loaded."""
+    """Stands in a module's globals for a function of the deferred dependency until it is loaded."""
 
     __slots__ = ("standin", "name")
 
-    def __init__(self, standin: "PyparsingStandin", name: str) -> None:
+    def __init__(self, standin: "DependencyStandin", name: str) -> None:
         self.standin = standin
         self.name = name
 
@@ -222,20 +220,21 @@ class LazyFunction:
         return getattr(self.standin.load(), self.name)(*args, **kwargs)
 
 
-class PyparsingStandin:
-    """catkin_pkg.condition's `pp` until it uses it: any attribute asked for loads pyparsing and
-    puts it, and its functions, in the module's globals where the stand-ins were."""
+class DependencyStandin:
+    """A module's `import dependency` until it uses it: any attribute asked for imports the
+    dependency and puts it, and its functions, in the module's globals where the stand-ins were."""
 
-    def __init__(self, module_globals: dict, modules: dict) -> None:
+    def __init__(self, module_globals: dict, modules: dict, dependency: str, functions: tuple) -> None:
         self._globals = module_globals
         self._modules = modules
-        for name in DEFERRED_FUNCTIONS:
+        self._dependency = dependency
+        for name in functions:
             setattr(self, name, LazyFunction(self, name))
 
     def load(self) -> object:
-        real = self._modules.get(PYPARSING)
+        real = self._modules.get(self._dependency)
         if real is None:
-            real = __import__(PYPARSING)
+            real = __import__(self._dependency)
         for key, value in list(self._globals.items()):
             if value is self:
                 self._globals[key] = real
@@ -244,29 +243,29 @@ class PyparsingStandin:
         return real
 
     def __getattr__(self, name: str) -> object:
-        if name.startswith("_"):
+        if name.startswith("__"):  # not the dependency's private names: http.client uses ssl's
             raise AttributeError(name)
         return getattr(self.load(), name)
 
 
-class PyparsingDeferral(OneModuleDeferral):
-    """Sees catkin_pkg.condition's import; runs its code with a stand-in for pyparsing."""
+class DependencyDeferral(OneModuleDeferral):
+    """Sees `target`'s import; runs its code with a stand-in for `dependency`, and for
+    `functions` (what it takes from the dependency by name: `from dependency import name`)."""
 
-    target = CONDITION
-    dependency = PYPARSING
+    functions: tuple = ()
 
     def load(self, module: object, loader: object) -> None:
-        """Run catkin_pkg.condition's code in `module` as `loader` would, its `import pyparsing`
-        answered by a stand-in while pyparsing is not loaded."""
+        """Run the target's code in `module` as `loader` would, its `import dependency` answered
+        by a stand-in while the dependency is not loaded."""
         try:
             module.__loader__ = module.__spec__.loader = loader
             code = loader.get_code(module.__name__)
-            standin = PyparsingStandin(module.__dict__, self.modules)
-            modules = self.modules
+            standin = DependencyStandin(module.__dict__, self.modules, self.dependency, self.functions)
+            modules, dependency = self.modules, self.dependency
             real_import = builtins.__import__
 
             def import_(name, globals=None, locals=None, fromlist=(), level=0):
-                if name == PYPARSING and level == 0 and modules.get(PYPARSING) is None:
+                if name == dependency and level == 0 and modules.get(dependency) is None:
                     return standin
                 return real_import(name, globals, locals, fromlist, level)
             module.__dict__["__builtins__"] = dict(builtins.__dict__, __import__=import_)
@@ -280,9 +279,35 @@ class PyparsingDeferral(OneModuleDeferral):
             self.leave()
 
 
+class PyparsingDeferral(DependencyDeferral):
+    """catkin_pkg.condition's pyparsing. What it takes from pyparsing by name at module level
+    (`from pyparsing import infixNotation`; operatorPrecedence before pyparsing 1.5.7) are
+    functions it only calls, later."""
+
+    target = "catkin_pkg.condition"
+    dependency = "pyparsing"
+    functions = ("infixNotation", "operatorPrecedence")
+
+
+class SslDeferral(DependencyDeferral):
+    """http.client's ssl, which it uses only inside HTTPSConnection's methods: every rospy process
+    imports http.client (through xmlrpc.client), and none speaks HTTPS to a master."""
+
+    target = "http.client"
+    dependency = "ssl"
+
+
+class UrllibSslDeferral(DependencyDeferral):
+    """urllib.request's ssl, used only inside functions (urlopen's cafile, HTTPS's handler):
+    roslaunch and rosmaster import it through xml.sax.saxutils."""
+
+    target = "urllib.request"
+    dependency = "ssl"
+
+
 def install(meta_path: list = sys.meta_path, modules: dict = sys.modules) -> None:
-    """Both finders, each first on `meta_path` unless what it defers is loaded already."""
-    for deferral in (NumpyDeferral, PyparsingDeferral):
+    """The finders, each first on `meta_path` unless what it defers is loaded already."""
+    for deferral in (NumpyDeferral, PyparsingDeferral, SslDeferral, UrllibSslDeferral):
         try:
             deferral.install(meta_path, modules)
         except Exception:

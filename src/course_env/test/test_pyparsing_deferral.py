@@ -136,7 +136,7 @@ SABOTAGE = {
     "finding": "finder = next(f for f in sys.meta_path if type(f).__name__ == 'PyparsingDeferral')\n"
                "finder.modules = None\n",
     # the stand-in cannot be made: the loader's own exec_module runs
-    "loading": "import usercustomize\nusercustomize.PyparsingStandin = None\n",
+    "loading": "import usercustomize\nusercustomize.DependencyStandin = None\n",
 }
 
 

@@ -3,20 +3,23 @@
 Run by .venv-jupyter's python in place of its `jupyterhub-singleuser` script (course_workbench's
 start-up, under a hub): standard library only, it imports nothing of the course.
 
-The single-user server imports the hub's database layer although it has no database: jupyterhub.log
-(for its request log) imports the hub's page handlers, and jupyterhub.services.auth (for its OAuth)
-the hub's scopes; those import jupyterhub.orm and SQLAlchemy, and jupyterhub.orm imports alembic at
-module level for the hub's database upgrades. In every student's container that is 28 MiB of
-resident memory: SQLAlchemy 16.8 MiB, alembic (with mako and pygments) 10.4, the ORM's classes 1.5.
+The single-user server imports the hub's database layer and page handlers although it has no
+database and serves no hub page: jupyterhub.log (for its request log) imports the hub's page
+handlers, and jupyterhub.services.auth (for its OAuth) the hub's scopes; those import
+jupyterhub.orm and SQLAlchemy, the handlers also the hub's users, spawners and cryptography, and
+jupyterhub.orm imports alembic at module level for the hub's database upgrades. In every
+student's container that is 31 MiB of resident memory: SQLAlchemy 16.8 MiB, alembic (with mako
+and pygments) 10.4, the handlers 2.4, the ORM's classes 1.5.
 
-So jupyterhub.singleuser is imported here with SQLAlchemy's and jupyterhub.orm's imports answered
-by stand-ins, and only for the names in `PLACEHOLDERS` (any other name asked for, or any failure,
-and that import is done again as upstream does it):
+So jupyterhub.singleuser is imported here with SQLAlchemy's, jupyterhub.orm's and
+jupyterhub.handlers' imports answered by stand-ins, and only for the names in `PLACEHOLDERS` (any
+other name asked for, or any failure, and that import is done again as upstream does it):
 
 - `import sqlalchemy as sa` and `from . import orm` get a module stand-in;
 - `from sqlalchemy import func` (or inspect) gets a Deferred, which calls or reads the real one;
 - `from sqlalchemy.exc import SQLAlchemyError` gets an exception class of its own, which nothing
-  raises: nothing can raise SQLAlchemy's errors while SQLAlchemy is not loaded;
+  raises: nothing can raise SQLAlchemy's errors while SQLAlchemy is not loaded; likewise
+  jupyterhub.log's HealthCheckHandler (for an isinstance test) is a class nothing instantiates;
 - traitlets' `Instance(orm.Server)` gets the class's name, which traitlets resolves on first use.
 
 The stand-ins leave sys.modules once jupyterhub.singleuser is loaded. From then on a `Watcher` sees
@@ -38,7 +41,7 @@ from typing import Callable, Dict, List, Optional, Tuple
 ALEMBIC = "alembic"
 ORM = "jupyterhub.orm"
 ENTRY = "jupyterhub.singleuser"
-DEFERRED = ("sqlalchemy", ORM)
+DEFERRED = ("sqlalchemy", ORM, "jupyterhub.handlers")
 # (module, name) -> what jupyterhub.singleuser's modules get for `from module import name`:
 # "call" a Deferred (a function they call later), "error" an exception class nothing raises,
 # "name" the dotted name (traitlets' Instance takes a class or its name)
@@ -47,6 +50,7 @@ PLACEHOLDERS: Dict[Tuple[str, str], str] = {
     ("sqlalchemy", "inspect"): "call",
     ("sqlalchemy.exc", "SQLAlchemyError"): "error",
     (ORM, "Server"): "name",
+    ("jupyterhub.handlers.pages", "HealthCheckHandler"): "class",
 }
 
 
@@ -150,8 +154,9 @@ class Deferral:
             kind = self.placeholders.get(key)
             if kind == "call":
                 self.given[key] = Deferred(module, name)
-            elif kind == "error":
-                self.given[key] = type(name, (Exception,), {"__module__": __name__})
+            elif kind in ("error", "class"):
+                bases = (Exception,) if kind == "error" else ()
+                self.given[key] = type(name, bases, {"__module__": __name__})
             elif kind == "name":
                 self.given[key] = "%s.%s" % key
             else:

@@ -56,66 +56,74 @@ def test_what_jupyterhub_orm_does_with_alembic_gets_the_real_alembic():
 
 
 LOADED = """
+    TOPS = ("sqlalchemy", "jupyterhub.orm", "jupyterhub.handlers", "alembic")
     def loaded():
-        return {top: top in sys.modules for top in ("sqlalchemy", "jupyterhub.orm", "alembic")}
+        return [top for top in TOPS if top in sys.modules]
     """
+# What the single-user server's modules hold in place of the deferred ones: (module, global) ->
+# (the module it stands for, the name there or None for the module itself)
+SWAPPED = """
+    HELD = {
+        ("jupyterhub.utils", "SQLAlchemyError"): ("sqlalchemy.exc", "SQLAlchemyError"),
+        ("jupyterhub.roles", "func"): ("sqlalchemy", "func"),
+        ("jupyterhub.scopes", "sa"): ("sqlalchemy", None),
+        ("jupyterhub.scopes", "orm"): ("jupyterhub.orm", None),
+        ("jupyterhub.roles", "orm"): ("jupyterhub.orm", None),
+        ("jupyterhub.metrics", "orm"): ("jupyterhub.orm", None),
+        ("jupyterhub", "orm"): ("jupyterhub.orm", None),
+        ("jupyterhub.log", "HealthCheckHandler"): ("jupyterhub.handlers.pages", "HealthCheckHandler"),
+    }
+    def swapped():
+        # each held name: "real" (the real module's object), "stand-in", or "stale" (a stand-in
+        # although the real module is loaded)
+        found = {}
+        for (module, name), (source, attr) in HELD.items():
+            value = getattr(sys.modules[module], name)
+            real = sys.modules.get(source)
+            if real is not None and value is (real if attr is None else getattr(real, attr)):
+                found["%s.%s" % (module, name)] = "real"
+            else:
+                found["%s.%s" % (module, name)] = "stand-in" if real is None else "stale"
+        return found
+    """
+SQLALCHEMY_NAMES = ("jupyterhub.utils.SQLAlchemyError", "jupyterhub.roles.func", "jupyterhub.scopes.sa")
+ORM_NAMES = ("jupyterhub.scopes.orm", "jupyterhub.roles.orm", "jupyterhub.metrics.orm", "jupyterhub.orm")
+HANDLER_NAMES = ("jupyterhub.log.HealthCheckHandler",)
+
+
+def held(real=(), stand_in=()) -> dict:
+    return dict({name: "real" for name in real}, **{name: "stand-in" for name in stand_in})
 
 
 @needs_venv
-def test_the_single_user_server_loads_without_the_hub_s_database_layer():
-    found = in_venv(LOADED, """
+def test_the_single_user_server_loads_without_the_hub_s_database_layer_and_pages():
+    found = in_venv(LOADED, SWAPPED, """
         deferral = entry["Deferral"]()
         deferral.import_entry()
-        import jupyterhub.singleuser, jupyterhub.utils, jupyterhub.scopes
+        import jupyterhub.singleuser
         stand_ins = sorted(n for n, m in sys.modules.items() if type(m).__name__ == "StandIn")
         print(json.dumps({"loaded": loaded(), "fell back": deferral.fell_back, "stand-ins in sys.modules": stand_ins,
-                          "extension": "jupyterhub.singleuser.extension" in sys.modules,
-                          "placeholder": jupyterhub.utils.SQLAlchemyError.__module__}))
+                          "extension": "jupyterhub.singleuser.extension" in sys.modules, "held": swapped()}))
     """)
-    assert found == {"loaded": {"sqlalchemy": False, "jupyterhub.orm": False, "alembic": False},
-                     "fell back": False, "stand-ins in sys.modules": [], "extension": True, "placeholder": "entry"}
-
-
-SWAPPED = """
-    def swapped():
-        import sqlalchemy, sqlalchemy.exc
-        from jupyterhub import roles, scopes, spawner, user, utils
-        from jupyterhub.handlers import base
-        found = {
-            "loaded": loaded(),
-            "errors": utils.SQLAlchemyError is base.SQLAlchemyError is sqlalchemy.exc.SQLAlchemyError,
-            "functions": roles.func is sqlalchemy.func and spawner.inspect is user.inspect is sqlalchemy.inspect,
-            "sqlalchemy": scopes.sa is sqlalchemy,
-        }
-        orm = sys.modules.get("jupyterhub.orm")
-        if orm is None:
-            found["orm"] = [type(m.orm).__name__ for m in (scopes, roles, user, sys.modules["jupyterhub"])]
-        else:
-            found["orm"] = scopes.orm is roles.orm is user.orm is sys.modules["jupyterhub"].orm is orm
-            found["orm classes"] = isinstance(orm.User, type)
-        return found
-    """
-SQLALCHEMY_REAL = {"errors": True, "functions": True, "sqlalchemy": True}
-ALL_REAL = dict(SQLALCHEMY_REAL, loaded={"sqlalchemy": True, "jupyterhub.orm": True, "alembic": False}, orm=True,
-                **{"orm classes": True})
-NOTHING = {"sqlalchemy": False, "jupyterhub.orm": False, "alembic": False}
+    assert found == {"loaded": [], "fell back": False, "stand-ins in sys.modules": [], "extension": True,
+                     "held": held(stand_in=SQLALCHEMY_NAMES + ORM_NAMES + HANDLER_NAMES)}
 
 
 @needs_venv
 @pytest.mark.parametrize("first_use", [
     "from jupyterhub import scopes; scopes.orm.User",           # a module stand-in
     "import jupyterhub.orm",                                     # somebody else's import of the ORM
-    "from jupyterhub.objects import Server; Server()",          # traitlets' Instance('jupyterhub.orm.Server')
+    "from jupyterhub.objects import Server; Server()",          # traitlets' Instance(orm.Server)
 ])
-def test_the_first_use_of_the_orm_loads_the_real_ones_everywhere_a_stand_in_was(first_use):
+def test_the_first_use_of_the_orm_loads_it_and_sqlalchemy_everywhere_a_stand_in_was(first_use):
     found = in_venv(LOADED, SWAPPED, """
         entry["Deferral"]().import_entry()
         import jupyterhub.singleuser
-        before = loaded()
         %s
-        print(json.dumps(dict(swapped(), before=before)))
+        print(json.dumps({"loaded": loaded(), "held": swapped()}))
     """ % first_use)
-    assert found == dict(ALL_REAL, before=NOTHING)
+    assert found == {"loaded": ["sqlalchemy", "jupyterhub.orm"],
+                     "held": held(real=SQLALCHEMY_NAMES + ORM_NAMES, stand_in=HANDLER_NAMES)}
 
 
 @needs_venv
@@ -129,14 +137,29 @@ def test_the_first_use_of_sqlalchemy_loads_it_everywhere_and_the_orm_stays_defer
         entry["Deferral"]().import_entry()
         import jupyterhub.singleuser
         %s
-        first = swapped()
+        first = {"loaded": loaded(), "held": swapped()}
         from jupyterhub import scopes
         scopes.orm.Role
-        print(json.dumps({"first": first, "then": swapped()}))
+        print(json.dumps({"first": first, "then": {"loaded": loaded(), "held": swapped()}}))
     """ % first_use)
-    assert found == {"first": dict(SQLALCHEMY_REAL, loaded={"sqlalchemy": True, "jupyterhub.orm": False, "alembic": False},
-                                   orm=["StandIn"] * 4),
-                     "then": ALL_REAL}
+    assert found == {
+        "first": {"loaded": ["sqlalchemy"], "held": held(real=SQLALCHEMY_NAMES, stand_in=ORM_NAMES + HANDLER_NAMES)},
+        "then": {"loaded": ["sqlalchemy", "jupyterhub.orm"],
+                 "held": held(real=SQLALCHEMY_NAMES + ORM_NAMES, stand_in=HANDLER_NAMES)}}
+
+
+@needs_venv
+def test_an_import_of_the_hub_s_pages_loads_everything_and_the_log_sees_its_health_check():
+    found = in_venv(LOADED, SWAPPED, """
+        entry["Deferral"]().import_entry()
+        import jupyterhub.singleuser
+        from jupyterhub import log
+        from jupyterhub.handlers.pages import HealthCheckHandler
+        print(json.dumps({"loaded": loaded(), "held": swapped(),
+                          "is the log's": log.HealthCheckHandler is HealthCheckHandler}))
+    """)
+    assert found == {"loaded": ["sqlalchemy", "jupyterhub.orm", "jupyterhub.handlers"],
+                     "held": held(real=SQLALCHEMY_NAMES + ORM_NAMES + HANDLER_NAMES), "is the log's": True}
 
 
 @needs_venv
@@ -171,7 +194,7 @@ def test_a_name_nobody_deferred_means_the_upstream_import():
                           "real error": jupyterhub.utils.SQLAlchemyError is sqlalchemy.exc.SQLAlchemyError,
                           "watching": any(type(f).__name__ == "Watcher" for f in sys.meta_path)}))
     """)
-    assert found == {"fell back": True, "loaded": {"sqlalchemy": True, "jupyterhub.orm": True, "alembic": False},
+    assert found == {"fell back": True, "loaded": ["sqlalchemy", "jupyterhub.orm", "jupyterhub.handlers"],
                      "left": [], "real error": True, "watching": True}
 
 
@@ -189,7 +212,7 @@ def test_with_sqlalchemy_loaded_already_nothing_is_deferred():
 
 
 @needs_venv
-def test_threads_using_stand_ins_at_once_load_sqlalchemy_once():
+def test_threads_using_stand_ins_at_once_leave_none_stale():
     found = in_venv(LOADED, SWAPPED, """
         import threading
         entry["Deferral"]().import_entry()
@@ -205,6 +228,7 @@ def test_threads_using_stand_ins_at_once_load_sqlalchemy_once():
             thread.start()
         for thread in threads:
             thread.join()
-        print(json.dumps(swapped()))
+        print(json.dumps({"loaded": loaded(), "held": swapped()}))
     """)
-    assert found == ALL_REAL
+    assert found == {"loaded": ["sqlalchemy", "jupyterhub.orm"],
+                     "held": held(real=SQLALCHEMY_NAMES + ORM_NAMES, stand_in=HANDLER_NAMES)}

@@ -362,7 +362,8 @@ def enter_state(state: str, student: Student, browser: Browser) -> None:
 
 
 def describe(label: str, w: Window) -> str:
-    return "%s CPU %5.1f%% of a core, memory %4.0f MiB, hub %4.1f%%" % (label, w.cpu_pct, w.memory_mib, w.hub_cpu_pct)
+    return "%s CPU %5.1f%% of a core, memory %4.0f MiB (kernel %2.0f), hub %4.1f%%" % (
+        label, w.cpu_pct, w.memory_mib, w.kernel_mib, w.hub_cpu_pct)
 
 
 def breakdown(labels: List[str], found: List[Window]) -> List[str]:

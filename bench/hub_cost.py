@@ -5,7 +5,7 @@ A container's cost is its cgroup's: CPU as the delta of the cgroup's own counter
 averaged in as `podman stats` does; memory as the cgroup's use less its file pages (v1:
 `memory.usage_in_bytes` minus `total_active_file` and `total_inactive_file`; v2: `memory.current`
 minus `file`): anonymous memory, tmpfs (the container's home and /tmp) and the kernel's, what the
-cgroup cannot give back by dropping page cache.
+cgroup cannot give back by dropping page cache; the kernel's part is also given apart (`kernel_bytes`).
 
 Inside a container, each process is named by its command line (`process_group`) and its CPU
 (`/proc/PID/stat` utime + stime) and anonymous memory (`/proc/PID/status` RssAnon) summed by
@@ -100,6 +100,18 @@ class Cgroup:
         stat = _keyed((self.v2 / "memory.stat").read_text())
         return int((self.v2 / "memory.current").read_text()) - stat.get("file", 0)
 
+    def kernel_bytes(self) -> int:
+        """The kernel's part of memory_bytes(): slab (mostly the dentries and inodes of files the
+        container opened, charged to the first cgroup that read them, image layers included),
+        page tables, kernel stacks, socket buffers. 0 where the kernel does not say."""
+        if self.v2 is None:
+            kmem = self.v1["memory"] / "memory.kmem.usage_in_bytes"
+            return int(kmem.read_text()) if kmem.exists() else 0
+        stat = _keyed((self.v2 / "memory.stat").read_text())
+        if "kernel" in stat:
+            return stat["kernel"]
+        return sum(stat.get(k, 0) for k in ("slab", "kernel_stack", "pagetables", "sock", "percpu"))
+
     def pids(self) -> List[int]:
         top = self.v1["cpuacct"] if self.v2 is None else self.v2
         found: List[int] = []
@@ -146,6 +158,7 @@ class Window:
     seconds: float
     cpu_pct: float
     memory_mib: float
+    kernel_mib: float
     by_group: Dict[str, Tuple[float, float]] = field(default_factory=dict)  # name -> (CPU %, RssAnon MiB)
     hub_cpu_pct: float = float("nan")
     load: str = ""
@@ -181,6 +194,7 @@ class Meter:
         if total - counted > 0.005 * elapsed:
             groups[ENDED] = [total - counted, 0.0]
         return Window(elapsed, 100.0 * total / elapsed, self.cgroup.memory_bytes() / MIB,
+                      self.cgroup.kernel_bytes() / MIB,
                       {name: (100.0 * cpu / elapsed, anon / MIB) for name, (cpu, anon) in groups.items()},
                       100.0 * (last.hub_s - first.hub_s) / elapsed if self.hub_pid else float("nan"), loadavg())
 

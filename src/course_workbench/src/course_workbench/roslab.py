@@ -22,18 +22,16 @@ from __future__ import annotations
 
 import argparse
 import ctypes
-import http.client
 import os
 import signal
 import subprocess
 import sys
 import threading
 import time
-import xmlrpc.client
 from typing import Dict, List, Optional, Sequence
 
 from course_net.ports import free_port
-from course_net.rpc import TimedTransport
+from course_workbench import master_probe
 from course_workbench.names import DEFAULT_MASTER_URI, TOKEN_VAR
 
 CALLER_ID = "/workbench_roslab"
@@ -50,12 +48,7 @@ PR_SET_PDEATHSIG = 1
 
 def master_pid(uri: str) -> Optional[int]:
     """The process id of the master at `uri`, or None when nothing answers as a master there."""
-    try:
-        master = xmlrpc.client.ServerProxy(uri, transport=TimedTransport(MASTER_TIMEOUT_S))
-        code, _message, pid = master.getPid(CALLER_ID)
-    except (OSError, xmlrpc.client.Error, http.client.HTTPException):
-        return None
-    return int(pid) if code == 1 else None
+    return master_probe.master_pid(uri, CALLER_ID, MASTER_TIMEOUT_S)
 
 
 def _die_with_parent() -> None:

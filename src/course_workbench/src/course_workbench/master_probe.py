@@ -66,7 +66,7 @@ def parse_reply(reply: bytes) -> Optional[int]:
     except UnicodeDecodeError:
         return None
     found = REPLY.match(text)
-    if found is None:
+    if found is None or int(found.group(1)) != 1:
         return None
     return int(found.group(2))
 

@@ -36,7 +36,7 @@ import re
 import sys
 import threading
 import types
-from typing import Callable, Dict, List, Optional, Tuple
+from typing import Callable, Dict, List, Optional, Set, Tuple
 
 ALEMBIC = "alembic"
 ORM = "jupyterhub.orm"
@@ -144,6 +144,7 @@ class Deferral:
         self.entry, self.tops = entry, tops
         self.placeholders = PLACEHOLDERS if placeholders is None else placeholders
         self.given: Dict[Tuple[str, str], object] = {}
+        self.stood_in: Set[str] = set()  # the modules some stand-in was made for
         self.fell_back = False
         self.lock = threading.Lock()
 
@@ -171,8 +172,9 @@ class Deferral:
             return
         before = set(sys.modules)
         try:
-            with StandInFinder(self.tops, self.placeholder):
+            with StandInFinder(self.tops, self.placeholder) as finder:
                 importlib.import_module(self.entry)
+            self.stood_in = {module.__name__ for module in finder.made}
         except Exception:
             for name in set(sys.modules) - before:
                 del sys.modules[name]
@@ -182,12 +184,13 @@ class Deferral:
 
     def swap(self, loaded: str) -> None:
         """Module `loaded` has just run: put it, and what was deferred from it, in place of the
-        stand-ins in every module's globals. No import happens here (no import lock is taken
-        while ours is held)."""
+        stand-ins in every module's globals. Only for a module some stand-in was made for (not
+        for each of SQLAlchemy's other submodules); no import happens here (no import lock is
+        taken while ours is held)."""
         real = sys.modules.get(loaded)
-        if real is None:
+        if real is None or loaded not in self.stood_in:
             return
-        swaps = {id(given): getattr(real, name) for (module, name), given in self.given.items()
+        swaps = {id(given): (given, getattr(real, name)) for (module, name), given in self.given.items()
                  if module == loaded and self.placeholders[(module, name)] != "name" and hasattr(real, name)}
         with self.lock:
             for module in list(sys.modules.values()):
@@ -195,10 +198,11 @@ class Deferral:
                 if not isinstance(namespace, dict) or module is real:
                     continue
                 for key, value in list(namespace.items()):
+                    pair = swaps.get(id(value))
                     if isinstance(value, StandIn) and value.__name__ == loaded:
                         namespace[key] = real
-                    elif id(value) in swaps and any(value is given for given in self.given.values()):
-                        namespace[key] = swaps[id(value)]
+                    elif pair is not None and value is pair[0]:
+                        namespace[key] = pair[1]
 
 
 class Watcher(importlib.abc.MetaPathFinder):

@@ -11,6 +11,7 @@ from __future__ import annotations
 import os
 import stat
 import time
+import xmlrpc.client
 from typing import Callable, Dict, Iterable, List, NamedTuple, Optional, Sequence, Set, Tuple
 
 import rosgraph
@@ -18,6 +19,7 @@ import rospkg
 from catkin.find_in_workspaces import find_in_workspaces
 
 from course_milestones.scripts import script_problems
+from course_net.rpc import TimedTransport
 
 # Our caller id towards the master, in every query the checks make.
 CALLER = "/course_milestone"
@@ -178,6 +180,29 @@ def wait_for_registration(before: Iterable[str], condition: Callable[[Registrati
         if time.monotonic() > deadline or not still_running():
             return None
         time.sleep(0.05)
+
+
+NODE_CALL_TIMEOUT_S = 2.0
+
+
+def sends_to(node_uri: str, topic: str, subscriber: str) -> Optional[bool]:
+    """Whether the node at `node_uri` has an outbound connection on `topic` to the node named
+    `subscriber`, by its own bus info (the slave API's getBusInfo: rospy and roscpp list each
+    publication's connections with the subscriber's caller id). None when it cannot tell: no
+    answer, or an answer not in that form.
+
+    A subscriber counts its connection once the publisher's handshake reply has arrived; the
+    publisher counts it a moment later (rospy replies, then adds the connection): a message
+    published in between reaches nobody."""
+    try:
+        code, _, info = xmlrpc.client.ServerProxy(node_uri, transport=TimedTransport(NODE_CALL_TIMEOUT_S)
+                                                  ).getBusInfo(CALLER)
+    except Exception:  # noqa: BLE001 - the node's answer may be anything (bad XML, a dropped line, no server)
+        return None
+    if code != 1 or not isinstance(info, list):
+        return None
+    return any(isinstance(c, list) and len(c) >= 5 and c[1] == subscriber and c[2] == "o" and c[4] == topic
+               for c in info)
 
 
 def topic_types(caller_id: str = CALLER) -> Dict[str, str]:

@@ -9,12 +9,13 @@ from __future__ import annotations
 
 import math
 import time
-from typing import Callable, List, NamedTuple, Optional, Tuple
+from typing import Callable, List, NamedTuple, Optional, Sequence, Tuple
 
 import rosgraph
+import rospy
 
 from course_milestones import causes, keymap as km
-from course_milestones.discovery import CALLER, node_uris
+from course_milestones.discovery import CALLER, node_uris, sends_to
 from course_milestones.students import REGISTER_TIMEOUT, wait_for_publisher
 from course_checks.artifacts import artifact_path
 from course_checks.keyboard import PtyKeyboard
@@ -23,13 +24,17 @@ from course_checks.waiting import wait_for
 
 PROBE_WINDOW = 1.5        # s: how long a key press has to produce its command
 RAW_WAIT = 1.0            # s: how long a key waits for the node's terminal to be in raw mode
+PUBLISHER_SIDE_WAIT = 3.0  # s: how long wait_connected waits for the node to list our connection
 Pose = Tuple[float, float, float]
 
 
 def wait_connected(recorder: TopicRecorder, node: Optional[str] = None, timeout: float = 10.0) -> bool:
     """Our subscriber is connected to `node`'s publisher (any publisher if None), so a command it
     publishes now reaches us. A connection to a node that just died can linger: naming the node
-    waits for the new one."""
+    waits for the new one. With `node`, this also waits (up to PUBLISHER_SIDE_WAIT) until the
+    node itself lists the connection (discovery.sends_to): before that, a command it publishes
+    is lost, and a key press typed then looks unanswered. That second wait never fails the
+    check: a node whose bus info says nothing only costs the wait."""
     try:
         uri = rosgraph.Master(CALLER).lookupNode(node) if node else None
     except rosgraph.MasterException:
@@ -37,7 +42,12 @@ def wait_connected(recorder: TopicRecorder, node: Optional[str] = None, timeout:
 
     def connected():
         return any(uri is None or c.endpoint_id == uri for c in recorder.sub.impl.connections)
-    return bool(wait_for(connected, timeout))
+    if not wait_for(connected, timeout):
+        return False
+    if uri is not None:
+        me, topic = rospy.get_caller_id(), recorder.sub.resolved_name
+        wait_for(lambda: sends_to(uri, topic, me) is not False, PUBLISHER_SIDE_WAIT)
+    return True
 
 
 class Motion(NamedTuple):
@@ -63,16 +73,19 @@ def discover_keymap(keyboard: PtyKeyboard, commands: TopicRecorder, who: str, fi
     direction has a key that moves the robot)."""
     started = time.monotonic()
     keyboard.raw_wait = keyboard.raw_wait or RAW_WAIT
-    result, problem = _search(keyboard, commands, km.KeyMapSearch(first=first), motion, window)
-    report_keymap(result, who, time.monotonic() - started)
+    trace: List[str] = []
+    result, problem = _search(keyboard, commands, km.KeyMapSearch(first=first), motion, window, trace)
+    report_keymap(result, who, time.monotonic() - started, trace)
     return result, problem
 
 
-def _search(keyboard, commands, search, motion, window):
+def _search(keyboard, commands, search, motion, window, trace):
     pressed: List[km.Probe] = []  # since the node (re)started
+    started = time.monotonic()
     while True:
         probe = search.next_probe()
         if probe is not None and search.keymap is None and keyboard.seen_raw and km.stale_bytes_risk(pressed, probe):
+            trace.append("%5.2f s: started again (a letter key after an unanswered arrow)" % (time.monotonic() - started))
             problem = _restart(keyboard, commands)
             if problem:
                 return search.result(), problem
@@ -85,7 +98,10 @@ def _search(keyboard, commands, search, motion, window):
             continue
         mark = commands.count
         before = motion.pose() if motion else None
+        pressed_at = time.monotonic()
         keyboard.press(probe.key, probe.enter)
+        typed_at = time.monotonic()
+        raw = keyboard.raw_mode()
         pressed.append(probe)
 
         def answered():
@@ -94,6 +110,8 @@ def _search(keyboard, commands, search, motion, window):
         seen = tuple((m.linear.x, m.angular.z) for m in commands.messages[mark:])
         outcome = km.Outcome(seen, exited=not keyboard.node.running())
         search.record(probe, outcome)
+        trace.append(press_line(probe, outcome, pressed_at - started, typed_at - pressed_at, raw,
+                                time.monotonic() - typed_at))
         if motion is not None and outcome.answered(probe.direction):
             problem = _check_moved(keyboard, probe, before, motion)
             if problem:
@@ -127,13 +145,23 @@ def _check_moved(keyboard: PtyKeyboard, probe: km.Probe, before: Optional[Pose],
                                                   km.WORDS[probe.direction], *before, *motion.pose()))
 
 
-def report_keymap(result: km.SearchResult, who: str, seconds: float) -> str:
-    """Print (test output) and save (artifacts) the key map found; the line printed."""
+def press_line(probe: km.Probe, outcome: km.Outcome, at: float, typing: float, raw: bool, after: float) -> str:
+    """One press for the artifact: when, the key, whether the terminal was in raw mode once it
+    was typed, and what came back (commands seen within the window, or none)."""
+    seen = ", ".join("linear.x=%g angular.z=%g" % c for c in outcome.commands[:3]) or "no command"
+    return "%5.2f s: %s typed after %.2f s, terminal %s -> %s%s in %.2f s" % (
+        at, km.key_label(probe.key, probe.enter), typing, "raw" if raw else "line by line", seen,
+        " (the node exited)" if outcome.exited else "", after)
+
+
+def report_keymap(result: km.SearchResult, who: str, seconds: float, trace: Sequence[str] = ()) -> str:
+    """Print (test output) and save (artifacts) the key map found, with each press after it in
+    the artifact; the line printed."""
     line = "key map of %s: %s (%d key presses, %.1f s)" % (
         who, result.keymap.describe() if result.keymap else "none found", result.presses, seconds)
     print(line, flush=True)
     with open(artifact_path("keymap"), "w") as out:
-        out.write(line + "\n")
+        out.write("".join(text + "\n" for text in [line, *trace]))
     return line
 
 

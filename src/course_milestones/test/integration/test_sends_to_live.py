@@ -1,0 +1,51 @@
+"""discovery.sends_to against real nodes: a rospy publisher (rostopic pub) and a roscpp one
+(topic_tools relay) list a subscriber by its caller id once it is connected, and nobody else."""
+import pytest
+
+from course_milestones import discovery
+from course_testkit.master import PrivateMaster
+from course_checks.waiting import wait_for
+
+STARTUP_S = 30.0
+
+
+@pytest.fixture(scope="module")
+def master():
+    with PrivateMaster() as m:
+        yield m
+
+
+def node_uri(master, name):
+    import xmlrpc.client
+
+    def found():
+        try:
+            code, _, uri = xmlrpc.client.ServerProxy(master.uri).lookupNode("/test", name)
+        except OSError:
+            return None
+        return uri if code == 1 else None
+    uri = wait_for(found, STARTUP_S)
+    assert uri, "%s did not register" % name
+    return uri
+
+
+def test_a_rospy_publisher_lists_its_subscriber(master):
+    master.start(["rostopic", "pub", "-r", "5", "/said", "std_msgs/String", "data: x", "__name:=talker"], "talker")
+    uri = node_uri(master, "/talker")
+    assert discovery.sends_to(uri, "/said", "/listener") is False
+    listener = master.start(["rostopic", "echo", "/said", "__name:=listener"], "listener")
+    assert wait_for(lambda: discovery.sends_to(uri, "/said", "/listener"), STARTUP_S), listener.output()[-500:]
+    assert discovery.sends_to(uri, "/said", "/somebody_else") is False
+    assert discovery.sends_to(uri, "/other_topic", "/listener") is False
+
+
+def test_a_roscpp_publisher_lists_its_subscriber(master):
+    # topic_tools' relay (C++) advertises its output once its input has carried a message
+    master.start(["rostopic", "pub", "-r", "5", "/relay_in", "std_msgs/String", "data: y",
+                  "__name:=relay_source"], "relay_source")
+    master.start(["rosrun", "topic_tools", "relay", "/relay_in", "/relay_out", "__name:=relay"], "relay")
+    uri = node_uri(master, "/relay")
+    listener = master.start(["rostopic", "echo", "/relay_out", "__name:=relay_listener"], "relay_listener")
+    assert wait_for(lambda: discovery.sends_to(uri, "/relay_out", "/relay_listener"), STARTUP_S), \
+        listener.output()[-500:]
+    assert discovery.sends_to(uri, "/relay_out", "/listener") is False

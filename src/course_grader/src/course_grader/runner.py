@@ -23,6 +23,7 @@ import functools
 import json
 import os
 import shutil
+import sys
 import tarfile
 import threading
 import time
@@ -166,9 +167,20 @@ class _Progress:
         self.note = ""
 
 
+_SAY_LOCK = threading.Lock()
+
+
+def say_line(line: str) -> None:
+    """Print one line whole: the runs' threads report at once, and print() writes a line and its
+    newline separately, so two lines could come out as one (a verdict line a reader misses)."""
+    with _SAY_LOCK:
+        sys.stdout.write(line + "\n")
+        sys.stdout.flush()
+
+
 class Grader:
     def __init__(self, milestones: Sequence[Milestone], options: Options,
-                 say: Callable[[str], None] = lambda line: print(line, flush=True)) -> None:
+                 say: Callable[[str], None] = say_line) -> None:
         self.milestones = list(milestones)
         self.options = options
         self.say = say

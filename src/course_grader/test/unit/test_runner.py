@@ -3,6 +3,9 @@ submission gets one verdict per selected milestone, a results.json and one progr
 whatever goes wrong with another submission."""
 import json
 import os
+import sys
+import threading
+import time
 
 from course_milestones.milestone import Milestone
 from course_checks.rostest_runner import RostestResult
@@ -166,3 +169,33 @@ def test_each_kind_of_milestone_is_run_by_its_rostest(tmp_path, monkeypatch):
     assert 'type="turtlesim_node"' in written and 'type="course_check"' in written and "/c/course.yaml" in written
     own = Milestone("mine", "t", "x", "/c/checks/mine.test", ("p",))
     assert runner.rostest_of(own, str(tmp_path))[:2] == ("", "/c/checks/mine.test")
+
+
+class _SlowStdout:
+    """A stdout whose write() lets other threads run whenever a piece does not end a line, as a
+    pipe's writer may be interrupted between a line and its newline."""
+
+    def __init__(self):
+        self.pieces = []
+
+    def write(self, text):
+        self.pieces.append(text)
+        if not text.endswith("\n"):
+            time.sleep(0.001)
+        return len(text)
+
+    def flush(self):
+        pass
+
+
+def test_lines_said_from_many_threads_come_out_whole(monkeypatch):
+    out = _SlowStdout()
+    monkeypatch.setattr(sys, "stdout", out)
+    per_thread = [["    student    milestone_%d_%d   pass   1.0s" % (t, i) for i in range(20)] for t in range(6)]
+    threads = [threading.Thread(target=lambda mine=mine: [runner.say_line(line) for line in mine])
+               for mine in per_thread]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    assert sorted("".join(out.pieces).splitlines()) == sorted(line for mine in per_thread for line in mine)

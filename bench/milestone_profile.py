@@ -41,7 +41,7 @@ def kind_of(cmdline: List[str]) -> str:
     if "catkin_make" in words or name in ("cmake", "make", "gmake", "cc1plus", "c++", "g++", "ld", "collect2",
                                           "as", "cc1", "gcc"):
         return "build"
-    if script == "rostest" or name == "rostest":
+    if script == "rostest" or name == "rostest" or "course_rospy.rostest_main" in cmdline:
         return "rostest + master"
     if script == "rosout" or name == "rosout":
         return "rosout"

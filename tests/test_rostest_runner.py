@@ -4,12 +4,14 @@ members left their session and ignore SIGINT/SIGTERM."""
 from __future__ import annotations
 
 import os
+import shutil
+import subprocess
 import textwrap
 from pathlib import Path
 
 import pytest
 
-from course_checks.rostest_runner import run_rostest
+from course_checks.rostest_runner import rostest_command, run_rostest
 
 PACKAGE = "runner_probe"
 CHECK = '''\
@@ -90,3 +92,35 @@ def _environ_has(pid: str, marker: str) -> bool:
         return marker.encode() in Path("/proc", pid, "environ").read_bytes().split(b"\0")
     except OSError:
         return False
+
+
+def test_rostest_runs_under_its_own_interpreter_through_the_quick_exit_wrapper() -> None:
+    script = shutil.which("rostest")
+    interpreter = Path(script).read_text().splitlines()[0][2:].strip()
+    assert rostest_command() == [interpreter, "-P", "-m", "course_rospy.rostest_main", script]
+
+
+def test_a_rostest_without_an_interpreter_line_is_run_as_it_is(tmp_path: Path, monkeypatch) -> None:
+    fake = tmp_path / "rostest"
+    fake.write_text("echo not python\n")
+    fake.chmod(0o755)
+    monkeypatch.setenv("PATH", "%s:%s" % (tmp_path, os.environ["PATH"]))
+    assert rostest_command() == ["rostest"]
+    fake.write_text("#!/usr/bin/env python3\n")  # two words: not a path we can run with -m
+    assert rostest_command() == ["rostest"]
+
+
+def test_the_wrapper_leaves_rostest_its_arguments_and_exit_code(probe_env: dict, tmp_path: Path) -> None:
+    """rostest through the wrapper and rostest alone: the same exit code for a passing and a
+    failing check (rostest's own rule), and the check's JUnit where rostest writes it."""
+    for verdict in ("pass", "fail"):
+        codes = []
+        for name, command in (("wrapped", rostest_command()), ("plain", ["rostest"])):
+            home = tmp_path / verdict / name
+            home.mkdir(parents=True)
+            run = subprocess.run(command + [PACKAGE, "%s.test" % verdict], env=dict(probe_env, ROS_HOME=str(home)),
+                                 cwd=str(home), stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                                 timeout=120)
+            assert list(home.glob("test_results/%s/rosunit-probe.xml" % PACKAGE)), run.stdout[-2000:]
+            codes.append(run.returncode)
+        assert codes[0] == codes[1] and (codes[0] == 0) == (verdict == "pass"), (verdict, codes)

@@ -10,7 +10,9 @@ its time limit) every process carrying the token is killed, so nothing is left r
 from __future__ import annotations
 
 import glob
+import importlib.util
 import os
+import shutil
 import subprocess
 import tempfile
 import threading
@@ -21,6 +23,7 @@ from course_checks import isolation, junit
 from course_checks.core_params import etc_dir_for_run
 
 DEFAULT_TIMEOUT_S = 300.0
+ROSTEST_MAIN = "course_rospy.rostest_main"  # rostest with course_rospy.quick_exit
 # What we keep of rostest's combined output: its start and its end.
 OUTPUT_HEAD_CHARS = 20_000
 OUTPUT_TAIL_CHARS = 60_000
@@ -126,6 +129,23 @@ def read_results(results_dir: str) -> Tuple[int, List[Tuple[str, str]], Optional
     return tests, failures, path
 
 
+def rostest_command() -> List[str]:
+    """How to start rostest: its script under its own interpreter (its #! line) through
+    course_rospy.rostest_main, which stops its servers' loops before they can spin at the end.
+    Plain `rostest` when the script is not found or names no interpreter, or without course_rospy
+    (which needs nothing of this package: a declared dependency would make a cycle with its tests)."""
+    script = shutil.which("rostest")
+    try:
+        with open(script or "", "rb") as f:
+            first = f.readline(256).decode("ascii")
+    except (OSError, UnicodeDecodeError):
+        return ["rostest"]
+    interpreter = first[2:].split() if first.startswith("#!") else []
+    if len(interpreter) != 1 or not os.path.isabs(interpreter[0]) or importlib.util.find_spec(ROSTEST_MAIN) is None:
+        return ["rostest"]
+    return [interpreter[0], "-P", "-m", ROSTEST_MAIN, script]  # -P: not the working folder on sys.path
+
+
 def run_rostest(pkg: str, test_file: str, args: Sequence[str] = (), env: Optional[dict] = None,
                 results_dir: Optional[str] = None, timeout: float = DEFAULT_TIMEOUT_S,
                 own_network: bool = True) -> RostestResult:
@@ -134,7 +154,7 @@ def run_rostest(pkg: str, test_file: str, args: Sequence[str] = (), env: Optiona
     results_dir = results_dir or tempfile.mkdtemp(prefix="rostest-")
     os.makedirs(results_dir, exist_ok=True)
     token = isolation.new_token()
-    command = isolation.isolated_command(["rostest"] + ([pkg] if pkg else []) + [test_file] + list(args),
+    command = isolation.isolated_command(rostest_command() + ([pkg] if pkg else []) + [test_file] + list(args),
                                          own_network)
     output = CappedText()
     started = time.monotonic()

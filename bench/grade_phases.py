@@ -134,8 +134,21 @@ def worktree_of(rev: str) -> Path:
         flags = " ".join(BUILD_FLAGS)
         subprocess.run(["bash", "-c", "cd catkin_ws && catkin_make %s && source devel/setup.bash && "
                         "cd ../solutions_ws && catkin_make %s" % (flags, flags)], cwd=tree, check=True,
-                       stdout=subprocess.DEVNULL)
+                       stdout=subprocess.DEVNULL, env=unsourced_env())
     return tree
+
+
+# What sourcing a catkin workspace sets: a worktree built with them set would chain this
+# checkout's workspaces (the reference overlay included) under its own, and its grader would see
+# the reference's modules as the course's (every verdict: "installs Python modules the course
+# provides", in 0.0 s).
+WORKSPACE_VARS = ("CMAKE_PREFIX_PATH", "ROS_PACKAGE_PATH", "PYTHONPATH", "LD_LIBRARY_PATH", "PKG_CONFIG_PATH",
+                  "ROSLISP_PACKAGE_DIRECTORIES", "ROS_ETC_DIR", "ROS_ROOT")
+
+
+def unsourced_env() -> Dict[str, str]:
+    """This environment without any catkin workspace sourced."""
+    return {k: v for k, v in os.environ.items() if k not in WORKSPACE_VARS}
 
 
 def cpu_cgroup(name: str) -> Optional[Path]:
@@ -274,6 +287,13 @@ def main() -> int:
                 done = grade_once(code, sub, out, opts.jobs, opts.only)
                 gradings[code.label].append(done)
                 print("round %d, %s: %.1f s (load %s)" % (i + 1, code.label, done.wall, load()), flush=True)
+                failed = [r.milestone for r in done.runs if not r.passed]
+                if failed and len(failed) == len(done.runs) and all(r.wall == 0.0 for r in done.runs):
+                    sys.exit("%s failed every milestone without running one: a broken set-up, not a figure "
+                             "(grade with %s sourced to see the reason)" % (code.label, code.setup))
+                if failed:
+                    print("  the reference failed: %s (the figures count these runs as they went)"
+                          % ", ".join(failed), flush=True)
                 shutil.rmtree(out, ignore_errors=True)
         for code in codes:
             report(code.label, gradings[code.label], opts.jobs)

@@ -3,6 +3,7 @@
 import pytest
 
 from course_milestones import discovery
+from course_testkit import tcpros
 from course_testkit.master import PrivateMaster
 from course_checks.waiting import wait_for
 
@@ -16,14 +17,11 @@ def master():
 
 
 def node_uri(master, name):
-    import xmlrpc.client
-
     def found():
         try:
-            code, _, uri = xmlrpc.client.ServerProxy(master.uri).lookupNode("/test", name)
-        except OSError:
+            return tcpros.node_api(master.uri, name)
+        except (OSError, LookupError):
             return None
-        return uri if code == 1 else None
     uri = wait_for(found, STARTUP_S)
     assert uri, "%s did not register" % name
     return uri

@@ -2,30 +2,19 @@
 fake nodes answer with rospy's and roscpp's form, with odd forms, or not at all. Whatever a
 node answers, sends_to says True, False or None and never raises."""
 import socket
-import threading
-import xmlrpc.server
-from contextlib import contextmanager
 
 from hypothesis import given, settings, strategies as st
 
 from course_milestones import discovery
+from course_testkit import xmlrpc_fake
 
 CHECK = "/turtlebot_check"
 TOPIC = "/cmd_vel"
 
 
-@contextmanager
 def node_answering(reply):
-    """A fake node's XML-RPC server whose getBusInfo returns `reply`; yields its URI."""
-    server = xmlrpc.server.SimpleXMLRPCServer(("127.0.0.1", 0), logRequests=False, allow_none=True)
-    server.register_function(lambda caller_id: reply, "getBusInfo")
-    thread = threading.Thread(target=server.serve_forever, args=(0.01,), daemon=True)
-    thread.start()
-    try:
-        yield "http://127.0.0.1:%d/" % server.server_address[1]
-    finally:
-        server.shutdown()
-        server.server_close()
+    """A fake node whose getBusInfo returns `reply`; a context giving its URI."""
+    return xmlrpc_fake.serving({"getBusInfo": lambda caller_id: reply})
 
 
 def bus(*connections):

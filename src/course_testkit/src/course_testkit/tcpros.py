@@ -28,9 +28,14 @@ def _ok(answer: list, what: str):
     return value
 
 
+def node_api(master_uri: str, node: str) -> str:
+    """`node`'s XML-RPC URI, as the master has it (LookupError when it has none)."""
+    return _ok(xmlrpc.client.ServerProxy(master_uri).lookupNode(CALLER_ID, node), "lookupNode " + node)
+
+
 def topic_address(master_uri: str, node: str, topic: str) -> Tuple[str, int]:
     """The (host, port) of `node`'s TCPROS server for `topic`, as the node itself hands it out."""
-    api = _ok(xmlrpc.client.ServerProxy(master_uri).lookupNode(CALLER_ID, node), "lookupNode " + node)
+    api = node_api(master_uri, node)
     protocol = _ok(xmlrpc.client.ServerProxy(api).requestTopic(CALLER_ID, topic, [["TCPROS"]]),
                    "requestTopic " + topic)
     return protocol[1], int(protocol[2])

@@ -3,19 +3,20 @@ pid from a real master, and None for anything that is not a master's answer, wha
 the delay or the size; its request is XML-RPC that xmlrpc.client reads back."""
 from __future__ import annotations
 
+import contextlib
 import socket
 import subprocess
 import sys
 import threading
 import time
 import xmlrpc.client
-import xmlrpc.server
 from typing import Callable, Iterator
 
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from course_testkit import xmlrpc_fake
 from course_testkit.master import PrivateMaster
 from course_workbench import master_probe
 
@@ -34,18 +35,8 @@ def test_a_real_master_answers_its_pid_as_xmlrpc_client_gets_it():
 @pytest.fixture
 def server() -> Iterator[Callable[[Callable], str]]:
     """A Python XML-RPC server whose getPid is the function given; its URI."""
-    servers = []
-
-    def serve(get_pid: Callable) -> str:
-        found = xmlrpc.server.SimpleXMLRPCServer(("127.0.0.1", 0), logRequests=False, allow_none=True)
-        found.register_function(get_pid, "getPid")
-        threading.Thread(target=found.serve_forever, daemon=True).start()
-        servers.append(found)
-        return "http://127.0.0.1:%d" % found.server_address[1]
-    yield serve
-    for found in servers:
-        found.shutdown()
-        found.server_close()
+    with contextlib.ExitStack() as servers:
+        yield lambda get_pid: servers.enter_context(xmlrpc_fake.serving({"getPid": get_pid})).rstrip("/")
 
 
 @pytest.mark.parametrize("answer, expected", [

@@ -41,6 +41,8 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 from typing import Dict, List, NamedTuple, Optional, Tuple
 
+from course_grader import workspace
+
 ROOT = Path(__file__).resolve().parents[1]
 STUDENT = "student"
 VERDICT_LINE = re.compile(r"^\s+%s\s+(\S+)\s+(pass|FAIL)\s+([\d.]+)s" % STUDENT)
@@ -138,17 +140,12 @@ def worktree_of(rev: str) -> Path:
     return tree
 
 
-# What sourcing a catkin workspace sets: a worktree built with them set would chain this
-# checkout's workspaces (the reference overlay included) under its own, and its grader would see
-# the reference's modules as the course's (every verdict: "installs Python modules the course
-# provides", in 0.0 s).
-WORKSPACE_VARS = ("CMAKE_PREFIX_PATH", "ROS_PACKAGE_PATH", "PYTHONPATH", "LD_LIBRARY_PATH", "PKG_CONFIG_PATH",
-                  "ROSLISP_PACKAGE_DIRECTORIES", "ROS_ETC_DIR", "ROS_ROOT")
-
-
 def unsourced_env() -> Dict[str, str]:
-    """This environment without any catkin workspace sourced."""
-    return {k: v for k, v in os.environ.items() if k not in WORKSPACE_VARS}
+    """This environment without this checkout's workspaces in its folder lists: a worktree built
+    with them would chain them (the reference overlay included) under its own, and its grader would
+    take the reference's modules for the course's (every verdict: "installs Python modules the
+    course provides", in 0.0 s)."""
+    return workspace.without_folders(dict(os.environ), [str(ROOT)])
 
 
 def cpu_cgroup(name: str) -> Optional[Path]:

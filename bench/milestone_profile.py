@@ -26,6 +26,7 @@ from collections import defaultdict
 from pathlib import Path
 from typing import Dict, List, Tuple
 
+from course_checks.rostest_runner import ROSTEST_MAIN
 from course_sandbox import procs
 
 SAMPLE_S = 0.02
@@ -41,7 +42,7 @@ def kind_of(cmdline: List[str]) -> str:
     if "catkin_make" in words or name in ("cmake", "make", "gmake", "cc1plus", "c++", "g++", "ld", "collect2",
                                           "as", "cc1", "gcc"):
         return "build"
-    if script == "rostest" or name == "rostest" or "course_rospy.rostest_main" in cmdline:
+    if script == "rostest" or name == "rostest" or ROSTEST_MAIN in cmdline:
         return "rostest + master"
     if script == "rosout" or name == "rosout":
         return "rosout"

@@ -201,6 +201,18 @@ def test_the_student_ros_logs_are_copied_out(graded: Path) -> None:
     assert any(name.startswith("talker") for name in copied), copied
 
 
+def test_no_log_tail_holds_a_line_of_the_sandbox(graded: Path) -> None:
+    """A student's log tail holds what their code printed, never a line of the grader's making:
+    a shell the sandbox started in a folder its user cannot read began it with `sh: 0: getcwd()
+    failed: Permission denied` (lab2_chatter_shell_clean_log's talker runs a shell as it starts)."""
+    found = ["%s/%s: %s" % (sample.name, name, line) for sample in SAMPLES
+             for name, test in _tests_of(graded, sample.name).items()
+             for line in test["output"].splitlines() if "getcwd() failed" in line]
+    assert not found, "\n".join(found)
+    if ROOT / "tests" / "submissions" / "lab2_chatter_shell_clean_log" in SAMPLES:
+        assert "talker starting" in _tests_of(graded, "lab2_chatter_shell_clean_log")["chatter"]["output"]
+
+
 UNITTEST_WORDS = re.compile(r"is not true|is not false| != |AssertionError|Traceback \(most recent call last\)")
 
 

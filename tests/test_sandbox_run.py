@@ -194,6 +194,36 @@ def test_a_build_sandbox_writes_only_its_workspace(place):
     assert (home / "built").exists() and not (course / "evil").exists()
 
 
+# What a student's shell and Python say of the folder they start in (pwd -P and os.getcwd ask the kernel).
+WHERE = "pwd -P; python3 -c 'import os; print(os.getcwd())'"
+
+
+def _unlisted_work_folder(out):
+    """The grader's work folder of a student is 0711 (course_grader.runner): the sandbox user
+    passes through it to the run's home but cannot list it."""
+    os.chmod(out / "_work" / "alice", 0o711)
+
+
+def test_a_student_process_starts_in_its_home_as_the_sandbox_shows_it(sandbox, place):
+    """A process the sandbox starts finds its working directory, whatever the folders above it
+    allow: entered by nsenter --wd, it sat in the host's mount of its home, which the sandbox
+    cannot name, and its shell began the student's log with `sh: 0: getcwd() failed`."""
+    out, home, _ = place
+    _unlisted_work_folder(out)
+    argv, env, cwd = sandbox.prepare(["sh", "-c", WHERE + "; echo \"$PWD\""])
+    done = subprocess.run(argv, env=env, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=30)
+    text = done.stdout.decode()
+    assert "getcwd" not in text and text.split() == [str(home)] * 3, text
+
+
+def test_a_build_starts_in_its_workspace_as_the_sandbox_shows_it(place):
+    out, home, course = place
+    _unlisted_work_folder(out)
+    policy = Policy(LEVEL, DEFAULT_USER, [str(home)], [str(out)], [str(course)], str(home))
+    code, text = capture_oneshot(policy, ["sh", "-c", WHERE + " 2>&1"], str(home), dict(os.environ))
+    assert code == 0 and text.decode().split() == [str(home)] * 2, text
+
+
 # Forks until refused, keeps what it made, says how many, then holds them.
 HOLDING_BOMB = ("import os, time\nn = 0\nwhile True:\n    try:\n        if os.fork() == 0:\n"
                 "            time.sleep(60)\n            os._exit(0)\n        n += 1\n    except OSError:\n"

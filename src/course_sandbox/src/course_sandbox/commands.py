@@ -12,6 +12,14 @@ Ctrl+C; so they run with SIGINT and SIGTERM ignored (`env --ignore-signal`), and
 command gets them back (`env --default-signal`). nsenter waits for the node and gives back its
 exit status.
 
+Working directory: a student's process changes to it inside the sandbox, by its path in the
+sandbox's view (`env --chdir`; bubblewrap's `--chdir` for a build). nsenter's `--wd` would open
+the folder before entering the mount namespace: the process would then sit in the host's mount of
+it, which the sandbox's root cannot name, so getcwd() falls back to reading each folder above it,
+and one the sandbox user cannot list (the grader's 0711 work folder) makes every shell start
+with `sh: 0: getcwd() failed: Permission denied` in the student's log (and Python `-c` fail to
+import).
+
 /dev is a small tmpfs with null, zero, full, random, urandom and tty, not bubblewrap's `--dev`:
 mounting a devpts makes bubblewrap nest a second user namespace, which nsenter could not join.
 A node's terminal (a pseudo-terminal the check opened) reaches it as an inherited descriptor.
@@ -126,14 +134,16 @@ def keeper_command(policy: Policy, can_traverse: Callable[[str], bool]) -> List[
 
 def enter_command(policy: Policy, init_pid: int, command: Sequence[str], cwd: str,
                   counted: bool = False) -> List[str]:
-    """`command` as a process of the run's sandbox, whose namespace init is `init_pid`. Without
-    namespaces: as the sandbox user (if any) with the limits. `counted`: see limits_prefix."""
-    inner = RESTORE_STOP_SIGNALS + limits_prefix(policy.limits, policy.level, counted) + list(command)
+    """`command` as a process of the run's sandbox, whose namespace init is `init_pid`, in the folder
+    `cwd` as the sandbox shows it (see the module docstring). Without namespaces: as the sandbox
+    user (if any) with the limits. `counted`: see limits_prefix."""
+    inner = (RESTORE_STOP_SIGNALS + ["--chdir=" + cwd] + limits_prefix(policy.limits, policy.level, counted)
+             + list(command))
     if not levels.uses_namespaces(policy.level):
         return user_prefix(policy) + inner
     return (user_prefix(policy) + IGNORE_STOP_SIGNALS
-            + ["nsenter", "--target", str(init_pid), "--user", "--mount", "--pid", "--preserve-credentials",
-               "--wd=" + cwd, "--"] + inner)
+            + ["nsenter", "--target", str(init_pid), "--user", "--mount", "--pid", "--preserve-credentials", "--"]
+            + inner)
 
 
 def oneshot_command(policy: Policy, command: Sequence[str], cwd: str,

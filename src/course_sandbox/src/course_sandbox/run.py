@@ -223,7 +223,7 @@ class RunSandbox:
         argv = self._join() + commands.enter_command(self.policy, self._init_pid, command, cwd,
                                                      counted=self._cgroup is not None)
         popen_cwd = None if levels.uses_namespaces(self.level) else cwd
-        return argv, student_env(self.policy, env), popen_cwd
+        return argv, dict(student_env(self.policy, env), PWD=cwd), popen_cwd
 
     def run_captured(self, command: Sequence[str], timeout: float = 30.0,
                      env: Optional[Dict[str, str]] = None) -> Tuple[Optional[int], bytes]:

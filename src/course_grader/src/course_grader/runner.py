@@ -43,7 +43,7 @@ from course_checks.run_gate import ENV_VAR as GATE_VAR
 from course_sandbox import leftovers, procs
 from course_sandbox.policy import ENV_VAR as POLICY_VAR, Limits
 
-from course_grader import gradescope, submissions, verdict, workspace
+from course_grader import gradescope, ros2_packages, submissions, verdict, workspace
 from course_grader.early_runs import GO, RESTART, EarlyRun
 from course_grader.class_outputs import WORK_DIR
 from course_grader.sandboxing import SandboxPlan
@@ -330,6 +330,12 @@ class Grader:
                 progress.note += "\nleft out (the course provides them): %s" % ", ".join(left_out)
             if self._stop.is_set():
                 self._fail_all(sub, runnable, verdict.INTERRUPTED)
+                return
+            ros2 = ros2_packages.problems([p.path for p in own], files)
+            if ros2:  # catkin_make would stop on it with words about the workspace, not the package
+                for m in runnable:
+                    self._record(Verdict(sub.name, m, False, ros2_packages.reason(m.packages, ros2),
+                                         cause="ros2_package"))
                 return
             workspace.populate(ws, own)
             order = longest_first(runnable, self._durations)

@@ -63,6 +63,28 @@ def test_each_submission_gets_its_verdicts_and_one_progress_line(tmp_path, monke
     assert "isolation: " in alice["output"]
 
 
+def test_a_ros2_package_fails_before_anything_is_built(tmp_path, monkeypatch):
+    monkeypatch.setattr(runner, "run_rostest", _fake_rostest)
+    monkeypatch.setenv("COURSE_SANDBOX_LEVEL", "none")  # fakes run nothing; tmp_path is in a 0700 folder
+    monkeypatch.setattr(workspace, "course_packages", lambda: set())
+    monkeypatch.setattr(workspace, "course_setup", lambda: "/nowhere/setup.bash")
+    built = []
+    monkeypatch.setattr(workspace, "build", lambda *args: built.append(args))
+    sub = _folder(tmp_path, "carol", ["chatter", "my_chatter"])
+    (tmp_path / "carol" / "src" / "my_chatter" / "package.xml").write_text(
+        '<package format="3"><name>my_chatter</name><version>1.0.0</version><description>d</description>'
+        '<maintainer email="c@example.edu">c</maintainer><license>MIT</license>\n'
+        '<export><build_type>ament_python</build_type></export></package>')
+    verdicts = runner.Grader([CHATTER, CP1], runner.Options(str(tmp_path / "out"), jobs=1),
+                             say=lambda line: None).grade([sub])
+    by = {v.milestone.name: v for v in verdicts}
+    assert not built and not by["chatter"].passed and not by["checkpoint1"].passed
+    assert {v.cause for v in verdicts} == {"ros2_package"}
+    assert by["checkpoint1"].reason.startswith("my_chatter is a ROS 2 (ament_python) package (src/my_chatter/"
+                                               "package.xml line 2: <build_type>ament_python</build_type>)")
+    assert by["chatter"].reason.startswith("the submission does not build: catkin_make cannot build a workspace")
+
+
 def test_autograder_files_without_git_follow_the_gitignore(tmp_path):
     """The course image has no .git: the zip's files then come from a walk that honours .gitignore."""
     from course_grader.autograder import ignored, repo_files

@@ -40,6 +40,7 @@ CAUSES = (
     Cause("python2", "Python 2 code (Noetic runs Python 3)"),
     Cause("package_xml", "package.xml leaves out a dependency the build uses, or has another format's tags"),
     Cause("rosbuild", "a rosbuild package (manifest.xml), not a catkin one"),
+    Cause("ros2_package", "a ROS 2 (ament) package, not a catkin one"),
     Cause("wrong_topic", "publishes or subscribes on another topic than the text's"),
     Cause("stopped_listening", "did what was asked, then stopped listening while still running"),
     Cause("unregistered", "did what was asked, then unregistered it while still running"),

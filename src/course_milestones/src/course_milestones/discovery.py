@@ -18,15 +18,15 @@ import rosgraph
 import rospkg
 from catkin.find_in_workspaces import find_in_workspaces
 
-from course_milestones.scripts import script_problems
+from course_milestones.scripts import node_folders, script_problems
 from course_net.rpc import TimedTransport
 
 # Our caller id towards the master, in every query the checks make.
 CALLER = "/course_milestone"
-# Files rosrun could run that are never a student's node.
+# Files rosrun could run that are never a student's node (a dynamic_reconfigure .cfg is an
+# executable Python script that generates code). Which folders are searched: scripts.node_folders.
 _IGNORED_SUFFIXES = (".pyc", ".so", ".a", ".o", ".cmake", ".txt", ".xml", ".md", ".launch", ".test",
-                     ".msg", ".srv", ".action", ".yaml", ".yml", ".png", ".sh~")
-_IGNORED_DIRS = {"CMakeFiles", ".git", "__pycache__", "test", "tests", "msg", "srv", "action", "cfg"}
+                     ".msg", ".srv", ".action", ".cfg", ".yaml", ".yml", ".png", ".sh~")
 _IGNORED_NAMES = {"setup.py", "__init__.py"}
 # How often a wait asks the master about registrations: each look costs the check and the master
 # 2-4 ms of CPU, and what is waited for (a node starting, a launch file's nodes) takes a second or more.
@@ -42,12 +42,12 @@ def package_dir(pkg: str) -> str:
 
 def list_executables(pkg: str) -> List[str]:
     """Paths of the executable files rosrun would find for `pkg` (source folder and devel/lib),
-    sorted by name; scripts in a package's test folders are left out."""
+    sorted by name: anywhere in the package (msg/ included) but in the folders
+    scripts.node_folders leaves out (build products, the package's tests)."""
     found: Dict[str, str] = {}
     roots = [package_dir(pkg)] + find_in_workspaces(["libexec"], project=pkg, first_matching_workspace_only=True)
     for root in roots:
-        for dirpath, dirnames, filenames in os.walk(root):
-            dirnames[:] = [d for d in dirnames if d not in _IGNORED_DIRS and not d.startswith(".")]
+        for dirpath, filenames in node_folders(root):
             for name in filenames:
                 path = os.path.join(dirpath, name)
                 if name in _IGNORED_NAMES or name.endswith(_IGNORED_SUFFIXES) or not _is_executable(path):

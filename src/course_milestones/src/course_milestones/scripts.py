@@ -21,12 +21,17 @@ from __future__ import annotations
 
 import os
 import re
-from typing import List
+from typing import Iterator, List, Tuple
 
 from course_milestones import causes
 
 # Build products and tool folders: never a student's script.
 SKIPPED_DIRS = {"build", "devel", "install", "logs", ".git", "__pycache__", ".catkin_tools", "__MACOSX"}
+# Where a package's nodes are looked for: everywhere, as rosrun does (`find -L <package>` for an
+# executable file of that name, its own build/ left out), so nodes kept in msg/, srv/, action/ or
+# cfg/ count; but never in these folders: the build products and tool folders above, CMake's, and
+# the package's tests (a test's helper node, started by a check, would be taken for the student's).
+NOT_NODE_DIRS = frozenset(SKIPPED_DIRS | {"CMakeFiles", "test", "tests"})
 # Larger files are data, not scripts.
 MAX_SCRIPT_BYTES = 1024 * 1024
 
@@ -76,14 +81,23 @@ def _source(path: str) -> bytes:
         return b""
 
 
+def node_folders(root: str) -> Iterator[Tuple[str, List[str]]]:
+    """(folder, its file names) of every folder under `root` (a package, or its devel/lib folder)
+    that may hold a node of the student's, in name order: NOT_NODE_DIRS and hidden folders are left
+    out. The one rule for the course's checks (course_milestones.discovery) and script_problems."""
+    for folder, dirs, files in os.walk(root):
+        dirs[:] = sorted(d for d in dirs if d not in NOT_NODE_DIRS and not d.startswith("."))
+        yield folder, sorted(files)
+
+
 def script_problems(package_dir: str) -> List[str]:
     """One sentence per problem: a #! line without the executable bit, a #! line ending in a
     carriage return, an executable .py file without a #! line, Python 2 that Python 3 cannot
-    compile. Paths are given from the package's name down (chatter/scripts/talker.py)."""
+    compile, in the folders where the checks look for nodes (node_folders). Paths are given from
+    the package's name down (chatter/scripts/talker.py)."""
     problems = []
-    for folder, dirs, files in os.walk(package_dir):
-        dirs[:] = sorted(d for d in dirs if d not in SKIPPED_DIRS and not d.startswith("."))
-        for name in sorted(files):
+    for folder, files in node_folders(package_dir):
+        for name in files:
             path = os.path.join(folder, name)
             first = _first_line(path)
             rel = os.path.relpath(path, os.path.dirname(package_dir))

@@ -378,8 +378,8 @@ def not_found_message(pkg: str, what: str, tried: Sequence[str]) -> causes.Findi
     not_started."""
     executables = list_executables(pkg)
     if not executables:
-        return causes.finding(start_cause(pkg), "package %s has no executable script (is it chmod +x, in scripts/ or "
-                                                "nodes/?)" % pkg)
+        return causes.finding(start_cause(pkg), "package %s has no executable script (is it chmod +x? it may be "
+                                                "anywhere in the package but its test folders)" % pkg)
     left = [t for t in tried if getattr(t, "left", False)]
     if left:  # it did what was asked, then stopped: that is the cause, said first
         others = [t for t in tried if t not in left]

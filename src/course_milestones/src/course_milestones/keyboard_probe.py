@@ -83,18 +83,27 @@ def _search(keyboard, commands, search, motion, window, trace):
     pressed: List[km.Probe] = []  # since the node (re)started
     started = time.monotonic()
     while True:
+        if search.restart_due:
+            trace.append("%5.2f s: started again (it exited)" % (time.monotonic() - started))
+            problem = _restart(keyboard, commands, "after it exited on %s"
+                               % km.key_label(search.exited_on[-1].key, search.exited_on[-1].enter))
+            if problem:
+                return search.result(), problem
+            search.restarted()
+            pressed = []
         probe = search.next_probe()
-        if probe is not None and search.keymap is None and keyboard.seen_raw and km.stale_bytes_risk(pressed, probe):
+        if (probe is not None and keyboard.seen_raw and not search.arrows_answered
+                and km.stale_bytes_risk(pressed, probe)):
             trace.append("%5.2f s: started again (a letter key after an unanswered arrow)" % (time.monotonic() - started))
-            problem = _restart(keyboard, commands)
+            problem = _restart(keyboard, commands, "to try letter keys after the arrows")
             if problem:
                 return search.result(), problem
             pressed = []
         if probe is None:
             result = search.result()
             return result, km.failure_message(result, commands.sub.resolved_name, motion.subject if motion else "it")
-        if probe.enter and keyboard.seen_raw:
-            search.skip()  # the node reads single keys (its terminal was seen in raw mode): no Enter
+        if not search.suits(probe, keyboard.seen_raw):
+            search.skip()  # the node reads single keys (its terminal was seen in raw mode), or lines: not both
             continue
         mark = commands.count
         before = motion.pose() if motion else None
@@ -103,52 +112,53 @@ def _search(keyboard, commands, search, motion, window, trace):
         typed_at = time.monotonic()
         raw = keyboard.raw_mode()
         pressed.append(probe)
+        wanted = search.wanted()
 
         def answered():
-            return any(km.answers(probe.direction, m.linear.x, m.angular.z) for m in commands.messages[mark:])
+            return any(km.answers(d, m.linear.x, m.angular.z) for m in commands.messages[mark:] for d in wanted)
         wait_for(lambda: answered() or not keyboard.node.running(), window)
-        seen = tuple((m.linear.x, m.angular.z) for m in commands.messages[mark:])
+        seen = tuple(km.Command.of(m) for m in commands.messages[mark:])
         outcome = km.Outcome(seen, exited=not keyboard.node.running())
-        search.record(probe, outcome)
+        gave = search.record(probe, outcome)
         trace.append(press_line(probe, outcome, pressed_at - started, typed_at - pressed_at, raw,
                                 time.monotonic() - typed_at))
-        if motion is not None and outcome.answered(probe.direction):
-            problem = _check_moved(keyboard, probe, before, motion)
+        for direction in gave if motion is not None else ():
+            problem = _check_moved(keyboard, probe, direction, before, motion)
             if problem:
                 return search.result(), problem
 
 
-def _restart(keyboard: PtyKeyboard, commands: TopicRecorder) -> Optional[str]:
-    """Start the node afresh (see keymap.stale_bytes_risk) and wait until it publishes to us again
-    (same node name, new URI)."""
+def _restart(keyboard: PtyKeyboard, commands: TopicRecorder, why: str) -> Optional[str]:
+    """Start the node afresh (see keymap.stale_bytes_risk; or it exited on a key) and wait until it
+    publishes to us again (same node name, new URI)."""
     topic = commands.sub.resolved_name
     before = node_uris()
     keyboard.restart()
     fresh = wait_for_publisher(topic, keyboard, REGISTER_TIMEOUT, before)
     if fresh is None or not wait_connected(commands, fresh.node):
-        return causes.finding("not_published", "started again to try letter keys after the arrows, it did not "
-                                               "publish %s again" % topic)
+        return causes.finding("not_published", "started again %s, it did not publish %s again" % (why, topic))
     return None
 
 
-def _check_moved(keyboard: PtyKeyboard, probe: km.Probe, before: Optional[Pose], motion: Motion) -> Optional[str]:
+def _check_moved(keyboard: PtyKeyboard, probe: km.Probe, direction: str, before: Optional[Pose],
+                 motion: Motion) -> Optional[str]:
     if before is None:
         return causes.finding("course_tools", "no pose of %s to check its motion" % motion.subject)
 
     def went():
-        return km.moved(probe.direction, before, motion.pose(), motion.min_distance, motion.min_angle)
+        return km.moved(direction, before, motion.pose(), motion.min_distance, motion.min_angle)
     if wait_for(went, motion.interval) or keyboard.press_until(probe.key, went, motion.tries, motion.interval,
                                                                 probe.enter):
         return None
     return causes.finding("not_moving", "after pressing %s, %s did not %s (pose x=%.2f y=%.2f theta=%.2f -> x=%.2f "
                           "y=%.2f theta=%.2f)" % (km.key_label(probe.key, probe.enter), motion.subject,
-                                                  km.WORDS[probe.direction], *before, *motion.pose()))
+                                                  km.WORDS[direction], *before, *motion.pose()))
 
 
 def press_line(probe: km.Probe, outcome: km.Outcome, at: float, typing: float, raw: bool, after: float) -> str:
     """One press for the artifact: when, the key, whether the terminal was in raw mode once it
     was typed, and what came back (commands seen within the window, or none)."""
-    seen = ", ".join("linear.x=%g angular.z=%g" % c for c in outcome.commands[:3]) or "no command"
+    seen = ", ".join(c.describe() for c in outcome.commands[:3]) or "no command"
     return "%5.2f s: %s typed after %.2f s, terminal %s -> %s%s in %.2f s" % (
         at, km.key_label(probe.key, probe.enter), typing, "raw" if raw else "line by line", seen,
         " (the node exited)" if outcome.exited else "", after)

@@ -3,6 +3,7 @@ sentence a student reads when a direction is missing."""
 import math
 
 import pytest
+from hypothesis import given, settings, strategies as st
 
 from course_milestones import keymap as km
 
@@ -11,32 +12,52 @@ WASD = {"w": (1.0, 0.0), "s": (-1.0, 0.0), "a": (0.0, 1.0), "d": (0.0, -1.0)}
 
 
 class FakeController:
-    """Answers a press with the command its map gives; `line` controllers need Enter."""
+    """Answers a press with the command its map gives (key -> (linear.x, angular.z[, linear.y]));
+    `line` controllers need Enter, the others read single keys (their terminal is in raw mode);
+    `quits_on` keys make it exit (a restart brings it back)."""
 
-    def __init__(self, keys, line=False, quits_on=None, continuous=False):
-        self.keys, self.line, self.quits_on, self.continuous = keys, line, quits_on, continuous
+    def __init__(self, keys, line=False, quits_on=(), continuous=False):
+        self.keys, self.line, self.continuous = keys, line, continuous
+        self.quits_on = {quits_on} if isinstance(quits_on, str) else set(quits_on)
         self.presses = []
-        self.state = (0.0, 0.0)
+        self.state = km.Command(0.0, 0.0)
         self.running = True
+        self.restarts = 0
+
+    @property
+    def seen_raw(self):
+        return not self.line and bool(self.presses)
+
+    def restart(self):
+        self.running, self.state = True, km.Command(0.0, 0.0)
+        self.restarts += 1
 
     def press(self, probe):
+        assert self.running, "a key typed into a node that exited"
         self.presses.append(probe)
-        if probe.key == self.quits_on:
+        if probe.key in self.quits_on:
             self.running = False
             return km.Outcome((), exited=True)
         command = self.keys.get(probe.key) if probe.enter == self.line else None
         if command is None:
             return km.Outcome((self.state,) * 3 if self.continuous else ())
-        self.state = command
-        return km.Outcome((command,) * (3 if self.continuous else 1))
+        self.state = km.Command(command[0], command[1], *command[2:])
+        return km.Outcome((self.state,) * (3 if self.continuous else 1))
 
 
 def search(controller, **kwargs):
+    """The ROS side's loop (keyboard_probe._search) without ROS."""
     s = km.KeyMapSearch(**kwargs)
     while True:
+        if s.restart_due:
+            controller.restart()
+            s.restarted()
         probe = s.next_probe()
         if probe is None:
             return s.result()
+        if not s.suits(probe, controller.seen_raw):
+            s.skip()
+            continue
         s.record(probe, controller.press(probe))
 
 
@@ -90,8 +111,9 @@ def test_back_and_right_doing_nothing_fails_naming_the_keys():
     assert not result.complete
     assert set(result.missing) == {km.BACKWARD, km.RIGHT}
     message = km.failure_message(result, "/turtle1/cmd_vel", "turtle1")
-    assert "after pressing down, /turtle1/cmd_vel got no command with linear.x < 0" in message
-    assert "no key made turtle1 turn right: after pressing right" in message
+    assert "no key made turtle1 go backward: after pressing down, 's', 'x', 'k' and " in message
+    assert "more keys, /turtle1/cmd_vel got no command with linear.x < 0" in message
+    assert "no key made turtle1 turn right: after pressing right, 'd', 'l', '6' and " in message
     # each silent key is pressed twice (a press can be lost while the node sets up its terminal)
     assert sum(1 for p in ctrl.presses if p.key == "down") == 2
 
@@ -110,27 +132,127 @@ def test_a_slow_answer_is_not_taken_for_the_next_key():
         def press(self, probe):
             self.presses.append(probe)
             late = len(self.presses) >= 2 and self.presses[-2].key == "up" and not self.presses[-2].enter
-            return km.Outcome(((2.0, 0.0),) if late else ())
-    ctrl = Slow({})
+            return km.Outcome((km.Command(2.0, 0.0),) if late else ())
+    ctrl = Slow({}, line=True)
     result = search(ctrl)
     assert result.keymap is None  # up + Enter got up's answer once, but not again: not taken
     assert ctrl.presses[1] == ctrl.presses[2] == km.Probe(km.FORWARD, "up", True)
 
 
-def test_nothing_goes_forward():
-    ctrl = FakeController({})
+FORWARD_KEYS = sum(len(layout.keys[km.FORWARD]) for layout in km.LAYOUTS)
+
+
+@pytest.mark.parametrize("line", [False, True])
+def test_nothing_moves_the_turtle(line):
+    ctrl = FakeController({}, line=line)
     result = search(ctrl)
     assert result.keymap is None
     message = km.failure_message(result, "/turtle1/cmd_vel", "turtle1")
-    assert message.startswith("no key made turtle1 go forward: after each of up, up + Enter, 'w'")
-    assert len(ctrl.presses) == 2 * 2 * sum(len(layout.keys[km.FORWARD]) for layout in km.LAYOUTS)
+    assert message.startswith("no key made turtle1 go forward, go backward, turn left or turn right: after each of "
+                              + ("up, up + Enter, 'w', 'w' + Enter and " if line else "up, 'w', 'z', 'i' and "))
+    assert message.endswith("more keys, /turtle1/cmd_vel got no command with linear.x > 0, linear.x < 0, "
+                            "angular.z > 0 or angular.z < 0 (commands seen: none)")
+    # the layouts' forward keys twice (alone, and + Enter while no raw mode was seen), then every other key once
+    first_rounds = 4 * FORWARD_KEYS if line else 2 * FORWARD_KEYS
+    assert len(ctrl.presses) == first_rounds + len(km.ALL_KEYS) - FORWARD_KEYS
+    assert {p.key for p in ctrl.presses} == set(km.ALL_KEYS)
 
 
-def test_node_exiting_stops_the_search():
-    ctrl = FakeController({"w": (1.0, 0.0)}, quits_on="up")
+def test_node_exiting_on_a_key_is_started_again():
+    ctrl = FakeController(WASD, quits_on="up")
     result = search(ctrl)
-    assert result.exited_after == km.Probe(km.FORWARD, "up", False)
-    assert "exited after the key up" in km.failure_message(result, "/turtle1/cmd_vel", "turtle1")
+    assert result.complete and result.keymap.keys[km.FORWARD] == "w" and ctrl.restarts == 1
+    assert result.exited_on == (km.Probe(km.FORWARD, "up", False),)
+
+
+def test_node_exiting_on_every_key_stops_the_search():
+    ctrl = FakeController({}, quits_on=km.ALL_KEYS)
+    result = search(ctrl)
+    assert ctrl.restarts == km.MAX_RESTARTS and len(result.exited_on) == km.MAX_RESTARTS + 1
+    assert result.exited_after == result.exited_on[-1]
+    message = km.failure_message(result, "/turtle1/cmd_vel", "turtle1")
+    # no key moved the turtle before it exited: it never did what was asked
+    assert message.cause == "exited_early" and "exited after the key" in message and "so far: none" in message
+
+
+def test_node_exiting_after_a_key_that_moved_the_turtle_did_some_of_it():
+    ctrl = FakeController({"w": (1.0, 0.0)}, quits_on=[k for k in km.ALL_KEYS if k != "w"])
+    result = search(ctrl)
+    assert result.keymap is not None and result.exited_after is not None
+    message = km.failure_message(result, "/turtle1/cmd_vel", "turtle1")
+    assert message.cause == "node_exited" and "exited after the key" in message
+
+
+def test_a_missing_turn_names_the_key_that_quit():
+    keys = {"w": (1.0, 0.0), "s": (-1.0, 0.0), "a": (0.0, 1.0)}
+    result = search(FakeController(keys, quits_on="q"))
+    message = km.failure_message(result, "/turtle1/cmd_vel", "turtle1")
+    assert "no key made turtle1 turn right" in message and "exited after 'q' and was started again" in message
+
+
+def test_inverted_turns_are_found():
+    """w/s forward and backward, d turns left and a right: the text fixes the motions, not the keys."""
+    keys = {"w": (1.0, 0.0), "s": (-1.0, 0.0), "d": (0.0, 1.0), "a": (0.0, -1.0)}
+    ctrl = FakeController(keys, line=True)
+    result = search(ctrl)
+    assert result.complete
+    assert result.keymap.keys == {km.FORWARD: "w", km.BACKWARD: "s", km.LEFT: "d", km.RIGHT: "a"}
+    assert result.keymap.describe() == "custom + Enter (forward='w', backward='s', left='d', right='a')"
+    assert result.presses == 8  # up, up + Enter, w, w + Enter twice, s, a, d
+    assert km.failure_message(result, "/turtle1/cmd_vel", "turtle1") is None
+
+
+def test_strafing_shows_linear_y():
+    keys = {"w": (1.0, 0.0), "s": (-1.0, 0.0), "a": (0.0, 0.0, 1.0), "d": (0.0, 0.0, -1.0)}
+    result = search(FakeController(keys))
+    message = km.failure_message(result, "/turtle1/cmd_vel", "turtle1")
+    assert "no key made turtle1 turn left" in message and "no key made turtle1 turn right" in message
+    assert "linear.x=0 linear.y=1 angular.z=0" in message and "linear.x=0 linear.y=-1 angular.z=0" in message
+
+
+def test_command_describes_every_field_that_is_not_zero():
+    assert km.Command(0.0, 0.0).describe() == "linear.x=0 angular.z=0"
+    assert km.Command(1.0, -0.5, 0.0, 2.0, 0.0, 3.0).describe() == "linear.x=1 linear.z=2 angular.y=3 angular.z=-0.5"
+
+
+MOTIONS = {km.FORWARD: (1.5, 0.0), km.BACKWARD: (-1.5, 0.0), km.LEFT: (0.0, 2.0), km.RIGHT: (0.0, -2.0)}
+
+
+@st.composite
+def key_maps(draw, directions=km.DIRECTIONS):
+    """A controller's map: distinct keys of the sets the search tries for `directions`, read as
+    single keys or lines, published once or all the time, maybe with a key that quits."""
+    keys = draw(st.lists(st.sampled_from(km.ALL_KEYS), min_size=len(directions), max_size=len(directions),
+                         unique=True))
+    scale = draw(st.floats(0.1, 5.0))
+    mapping = {k: (MOTIONS[d][0] * scale, MOTIONS[d][1] * scale) for k, d in zip(keys, directions)}
+    others = [k for k in km.ALL_KEYS if k not in mapping]
+    stop = draw(st.none() | st.sampled_from(others))
+    if stop is not None:
+        mapping[stop] = (0.0, 0.0)
+    quits = draw(st.none() | st.sampled_from([k for k in others if k != stop]))
+    return mapping, dict(zip(directions, keys)), quits, draw(st.booleans()), draw(st.booleans())
+
+
+@settings(max_examples=300, deadline=None)
+@given(key_maps())
+def test_any_four_distinct_keys_are_found(drawn):
+    mapping, expected, quits, line, continuous = drawn
+    result = search(FakeController(mapping, line=line, quits_on=quits or (), continuous=continuous))
+    assert result.complete, km.failure_message(result, "/t/cmd_vel", "t")
+    assert result.keymap.keys == expected and result.keymap.enter == line
+    assert km.failure_message(result, "/t/cmd_vel", "t") is None
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.sampled_from(km.DIRECTIONS).flatmap(
+    lambda gone: st.tuples(st.just(gone), key_maps(tuple(d for d in km.DIRECTIONS if d != gone)))))
+def test_a_missing_motion_fails_naming_it(drawn):
+    gone, (mapping, _, quits, line, continuous) = drawn
+    result = search(FakeController(mapping, line=line, quits_on=quits or (), continuous=continuous))
+    assert not result.complete and set(result.missing) == {gone}
+    message = km.failure_message(result, "/t/cmd_vel", "t")
+    assert message.cause == "not_moving" and "no key made t %s:" % km.WORDS[gone] in message
 
 
 def test_first_keymap_is_tried_first():

@@ -5,6 +5,7 @@ import base64
 import json
 import os
 import unittest
+import xmlrpc.client
 
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
@@ -20,6 +21,8 @@ from std_srvs.srv import Trigger
 from turtlesim.constants import DEFAULT_BACKGROUND_RGB, METER_PX, WORLD_SIZE
 from turtlesim.srv import SetPen, TeleportAbsolute
 from course_checks.recorders import TopicRecorder
+from course_checks.waiting import wait_for
+from course_testkit.tcpros import node_api
 
 
 def pixel(msg: Image, x: int, y: int):
@@ -27,12 +30,28 @@ def pixel(msg: Image, x: int, y: int):
     return tuple(bytearray(msg.data[i:i + 3]))
 
 
+def turtlesim_sends_to_us(topic: str) -> bool:
+    """Whether turtlesim itself lists our subscriber on `topic` (its bus info). Our side counts the
+    connection a moment before turtlesim does, and turtlesim records ~scene's lines only while it
+    counts a subscriber: a line drawn in between never comes."""
+    me = rospy.get_caller_id()
+    _, _, info = xmlrpc.client.ServerProxy(node_api(rosgraph.get_master_uri(), "/turtlesim")).getBusInfo(me)
+    return any(c[1] == me and c[2] == "o" and c[4] == topic for c in info)
+
+
+def green_line(msg: String) -> bool:
+    """A ~scene update holding the green line of test_scene_tells_... (pen 0 255 0, width 4, x 90 -> 270)."""
+    return any(s[:4] == [0, 255, 0, 4] and s[4] == 90.0 and s[6] == 270.0 for s in json.loads(msg.data)["strokes"])
+
+
 class TurtlesimImage(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.app = QApplication.instance() or QApplication([])
         rospy.init_node("turtlesim_image_check")
-        rospy.wait_for_service("/turtlesim/snapshot", 20)
+        # turtle1's services come after the node's own (~snapshot, ~canvas): wait for those we call.
+        for service in ("/turtlesim/snapshot", "/turtlesim/canvas", "/turtle1/set_pen", "/turtle1/teleport_absolute"):
+            rospy.wait_for_service(service, 20)
 
     def test_image_shows_background_paths_and_turtle(self):
         teleport = rospy.ServiceProxy("/turtle1/teleport_absolute", TeleportAbsolute)
@@ -56,12 +75,13 @@ class TurtlesimImage(unittest.TestCase):
 
     def test_scene_tells_the_lines_and_canvas_gives_the_whole_picture(self):
         scene = TopicRecorder("/turtlesim/scene", String)
+        self.assertTrue(wait_for(lambda: turtlesim_sends_to_us("/turtlesim/scene"), 10),
+                        "turtlesim should connect ~scene to our subscriber")
         teleport = rospy.ServiceProxy("/turtle1/teleport_absolute", TeleportAbsolute)
         rospy.ServiceProxy("/turtle1/set_pen", SetPen)(0, 255, 0, 4, 0)
         teleport(2.0, 8.0, 0.0)
         teleport(6.0, 8.0, 0.0)  # a green line 4 m long at y = 8 m
-        green = scene.wait(lambda m: any(s[:4] == [0, 255, 0, 4] and s[4] == 90.0 and s[6] == 270.0
-                                         for s in json.loads(m.data)["strokes"]), timeout=10)
+        green = wait_for(lambda: next((m for m in scene.messages if green_line(m)), None), 10)
         self.assertIsNotNone(green, "the green line should come as a stroke on ~scene: %s" % scene.messages[-3:])
         update = json.loads(green.data)
         self.assertEqual([t[0] for t in update["turtles"]], ["turtle1"])

@@ -45,6 +45,7 @@ CAUSES = (
     Cause("stopped_listening", "did what was asked, then stopped listening while still running"),
     Cause("unregistered", "did what was asked, then unregistered it while still running"),
     Cause("node_exited", "did what was asked, then exited"),
+    Cause("exited_early", "exited before doing what was asked"),
     Cause("not_started", "the executable or launch file the text runs is missing, or does not start the node asked"),
     Cause("not_running", "a node the text names is not running"),
     Cause("not_published", "publishes nothing on the text's topic"),
@@ -88,6 +89,12 @@ def finding(key: str, text: str) -> Finding:
     made = Finding(text)
     made.cause = key
     return made
+
+
+def exited(did: bool) -> str:
+    """The cause of a node that exited: node_exited when the check saw it do some of what was asked
+    first, exited_early when it did not (registering a topic is not yet doing what was asked)."""
+    return "node_exited" if did else "exited_early"
 
 
 def of(text: object, default: str = "") -> str:

@@ -10,6 +10,8 @@ from __future__ import annotations
 import re
 from typing import List, NamedTuple, Optional, Sequence, Tuple
 
+from course_milestones.closest_line import GAP, SPACE, Form, literal, pattern
+
 STRING_TYPES = ("string",)
 NUMBER_TYPES = ("float64", "float32", "int64", "uint64", "int32", "uint32", "int16", "uint16", "int8", "uint8",
                 "time")
@@ -17,12 +19,24 @@ NUMBER_TYPES = ("float64", "float32", "int64", "uint64", "int32", "uint32", "int
 SCALES = (1.0, 1e3, 1e6, 1e9)
 
 # "Message: <message>, Sent at: <timestamp>, Received at: <timestamp>" (section 3.1, subscriber
-# step 2), with the spacing print(a, b, c) adds around commas tolerated.
+# step 2), with the spacing print(a, b, c) adds around commas tolerated. The form is the pattern
+# the check searches for, and says where a line departs from it (closest_line).
 _NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
-PRINTED = re.compile(r"Message:\s*(?P<message>.*?)\s*,\s*Sent at:\s*(?P<sent>%s)\s*,\s*Received at:\s*(?P<received>%s)"
-                     % (_NUMBER, _NUMBER), re.IGNORECASE)
+MESSAGE = "<message>"
+FORM = Form(["Message:", SPACE, pattern(r"(?P<message>.*?)", MESSAGE), GAP, ",", SPACE,
+             "Sent at:", SPACE, pattern(r"(?P<sent>%s)" % _NUMBER, "<timestamp>", greedy=True), GAP, ",", SPACE,
+             "Received at:", SPACE, pattern(r"(?P<received>%s)" % _NUMBER, "<timestamp>", greedy=True)])
+PRINTED = re.compile(FORM.pattern, re.IGNORECASE)
 PROMPT = "Please enter a line of text and press <Enter>:"
-_PROMPT_WORDS = re.compile(r"enter\s+a\s+line\s+of\s+text", re.IGNORECASE)
+_WORDS_APART = pattern(r"\s+", " ")
+PROMPT_FORM = Form(["enter", _WORDS_APART, "a", _WORDS_APART, "line", _WORDS_APART, "of", _WORDS_APART, "text"])
+_PROMPT_WORDS = re.compile(PROMPT_FORM.pattern, re.IGNORECASE)
+_AROUND_MESSAGE = pattern(r"['\"\s]*", "")  # what line_for strips around a message
+
+
+def printed_form(message: str) -> Form:
+    """The form of the line the subscriber prints for `message` (as line_for reads it)."""
+    return FORM.replaced(MESSAGE, (_AROUND_MESSAGE,) + literal(message, fold=False) + (_AROUND_MESSAGE,))
 
 
 class Fields(NamedTuple):

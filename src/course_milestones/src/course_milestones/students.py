@@ -343,7 +343,8 @@ def describe_attempt(name: str, keyboard: PtyKeyboard, seen: Sequence[Registrati
                 and not own_names(did[0].publishes + did[0].services) else "unregistered it"
             return _left("%s %s, then %s while still running: %s" % (name, what, stopped, ONE_MESSAGE),
                          "stopped_listening" if stopped == "stopped listening" else "unregistered")
-        return _left("%s %s, then %s" % (name, what, ended), "node_exited")
+        # registering what was asked is not yet doing it: the check never saw it work (no spin)
+        return _left("%s %s, then %s" % (name, what, ended), causes.exited(False))
     if seen:
         names = sorted({n for r in seen for n in own_names(r.publishes + r.subscribes + r.services)})
         words = "%s registered %s (%s)" % (name, ", ".join(r.node for r in seen), ", ".join(names) or "no topics")

@@ -32,7 +32,7 @@ FINDING_HELPERS = {
     "role_missing",           # students: no started script registered the topic asked for
     "missing_launch_file",    # launch_files: not_started
     "missing_simulators",     # two_sims: wrong_launch
-    "failure_message",        # keymap: not_moving, node_exited
+    "failure_message",        # keymap: not_moving, node_exited, exited_early
     "run_steps",              # steps.run: the failing step's Finding (course_check)
 }
 # Helpers returning a tuple whose element at that index is a Finding (or None).

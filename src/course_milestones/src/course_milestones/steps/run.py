@@ -18,9 +18,13 @@ from course_milestones.steps.state import StepFailed, StepState, course_error
 
 Primitive = Callable[[StepState, Dict, str], None]
 # Causes a step's own `cause` does not replace: the node is gone, or the check itself is at fault.
-KEEPS_OWN_CAUSE = frozenset(("node_exited", "stopped_listening", "unregistered", "check_failed", "grader_error",
-                             "package_missing", "not_started", "not_executable", "no_shebang", "windows_line_endings",
-                             "python2"))
+KEEPS_OWN_CAUSE = frozenset(("node_exited", "exited_early", "stopped_listening", "unregistered", "check_failed",
+                             "grader_error", "package_missing", "not_started", "not_executable", "no_shebang",
+                             "windows_line_endings", "python2"))
+
+# Checks that see the node do what is asked (the messages it sends, the lines it prints); registering
+# a topic or a service is not yet doing it (a node without rospy.spin() registers, then exits).
+SEES_WORK = frozenset(("publishes", "prints"))
 
 RUNNERS: Dict[str, Primitive] = {
     "start": starting.start,
@@ -72,6 +76,8 @@ def run_step(state: StepState, primitive: str, given: Dict, where: str) -> Optio
     except Exception as err:  # noqa: BLE001 - the check's own fault: said, with the step, not as a traceback
         return causes.finding("grader_error", "the check failed on the step at %s (%s): %s: %s" % (
             where, primitive, type(err).__name__, err))
+    if primitive in SEES_WORK:
+        state.saw_working((given or {}).get("node"))
     return None
 
 

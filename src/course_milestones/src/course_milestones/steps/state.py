@@ -8,7 +8,7 @@ file's own mistake is course_error, a failed milestone that names the step's pla
 from __future__ import annotations
 
 import time
-from typing import Callable, Dict, List, NamedTuple, Optional, Sequence, Tuple
+from typing import Callable, Dict, List, NamedTuple, Optional, Sequence, Set, Tuple
 
 import rospy
 
@@ -67,6 +67,9 @@ class StepState:
         self.on_action = tuple(on_action)
         self.started: Dict[str, Started] = {}
         self.last: Optional[Started] = None
+        # the started processes a check saw do what it asks (messages sent, a line printed): one that
+        # exits afterwards did some of it (causes.exited)
+        self.did: Set[str] = set()
         self.output_marks: Dict[str, int] = {}
         self.pose_recorders: Dict[str, TopicRecorder] = {}
         self.pose_marks: Dict[str, int] = {}
@@ -82,21 +85,35 @@ class StepState:
         if old is not None:
             old.process.end()
         self.started[started.name] = started
+        self.did.discard(started.name)
         self.last = started
+
+    def find(self, node: Optional[str]) -> Optional[Started]:
+        """The started process a step's `node` names (default: the last one started), or None."""
+        if node is None or node in self.started:
+            return self.last if node is None else self.started[node]
+        by_node = [s for s in self.started.values() if s.node == node]
+        return by_node[-1] if by_node else None
 
     def process(self, node: Optional[str], where: str) -> Started:
         """The started process a step's `node` names (default: the last one started)."""
+        found = self.find(node)
+        if found is not None:
+            return found
         if node is None:
-            if self.last is None:
-                raise course_error(where, "no `start` step before this one started a node to read")
-            return self.last
-        if node in self.started:
-            return self.started[node]
-        by_node = [s for s in self.started.values() if s.node == node]
-        if by_node:
-            return by_node[-1]
+            raise course_error(where, "no `start` step before this one started a node to read")
         raise course_error(where, "node %r is not the `as` name of an earlier `start` step (%s)" % (
             node, ", ".join(self.started) or "none started"))
+
+    def saw_working(self, node: Optional[str]) -> None:
+        """A check saw the process a step's `node` names do what it asks."""
+        found = self.find(node)
+        if found is not None:
+            self.did.add(found.name)
+
+    def exit_cause(self, started: Started) -> str:
+        """The cause of `started` having exited: whether a check saw it work before (causes.exited)."""
+        return causes.exited(started.name in self.did)
 
     def nodes(self, node: Optional[str], where: str) -> Optional[Tuple[str, ...]]:
         """The node names a step's `node` stands for; None (any node) when no `start` step ran and

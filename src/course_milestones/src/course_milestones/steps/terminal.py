@@ -39,7 +39,8 @@ def prints(state: StepState, p: Dict, where: str) -> None:
     said = "its output ends with: %r" % output[-TAIL_CHARS:] if output.strip() else "it printed nothing at all"
     # a node that ended before it printed the line (a client that printed another line is not_printed)
     gone = ended and (started.node is not None or not output.strip())
-    raise failed("node_exited" if gone else "not_printed", "`%s` printed no line matching %r %s (waited %g s)%s; %s"
+    raise failed(state.exit_cause(started) if gone else "not_printed",
+                 "`%s` printed no line matching %r %s (waited %g s)%s; %s"
                  % (started.command, p["pattern"], since, within, ended, said))
 
 
@@ -54,7 +55,7 @@ def type_keys(state: StepState, p: Dict, where: str) -> None:
     pause = float(p.get("pause") or 0.0)
     for key in keys:
         if not keyboard.node.running():
-            raise failed("node_exited", "`%s` exited (status %s) while keys were typed on its terminal%s" % (
-                started.command, keyboard.node.proc.returncode, students.last_words(keyboard)))
+            raise failed(state.exit_cause(started), "`%s` exited (status %s) while keys were typed on its terminal%s"
+                         % (started.command, keyboard.node.proc.returncode, students.last_words(keyboard)))
         keyboard.press(key)
         time.sleep(pause)  # the text's pace of typing, not a wait for anything

@@ -54,13 +54,15 @@ def check_fields(fields: Dict, where: str) -> None:
             raise course_error(where, "fields.%s: %s" % (path, wrong))
 
 
-def _not_registered(state: StepState, nodes, topic: str, kind: str) -> Exception:
-    """Why no node of `nodes` publishes (kind "publishes") or subscribes to `topic`."""
+def _not_registered(state: StepState, node: Optional[str], nodes, topic: str, kind: str) -> Exception:
+    """Why no node of `nodes` (those of the step's `node`) publishes (kind "publishes") or
+    subscribes to `topic`."""
     regs = state.registered(nodes)
     who = state.who(nodes)
     if nodes is not None and not regs:
-        return failed("node_exited" if nodes else "not_started",
-                      "%s is not running, so nothing %s %s" % (who, kind, topic))
+        started = state.find(node)  # a node of a started process exited; one no step started never ran
+        cause = "not_started" if not nodes else state.exit_cause(started) if started else "not_running"
+        return failed(cause, "%s is not running, so nothing %s %s" % (who, kind, topic))
     other = sorted({n for r in regs for n in own_names(getattr(r, kind))})
     if other:
         return failed("wrong_topic", "%s %s %s, not %s" % (who, kind, ", ".join(other), topic))
@@ -82,11 +84,11 @@ def registration(state: StepState, p: Dict, where: str, kind: str):
         started = state.process(p.get("node"), where)
         code = started.process.node.proc.poll()
         if code is not None:
-            raise failed("node_exited", "`%s` exited with status %s, so nothing %s %s%s" % (
+            raise failed(state.exit_cause(started), "`%s` exited with status %s, so nothing %s %s%s" % (
                 started.command, code, kind, topic, students.last_words(started.process)))
         raise failed("not_started", "`%s` runs no node, so nothing %s %s" % (started.command, kind, topic))
     if not found:
-        raise _not_registered(state, nodes, topic, kind)
+        raise _not_registered(state, p.get("node"), nodes, topic, kind)
     return found
 
 

@@ -71,7 +71,8 @@ class SampleGrading(BackgroundGrading):
 
 
 def checkout_state() -> str:
-    """What `git status` and `git diff` say of the course checkout (a sample must change neither)."""
+    """What `git status` and `git diff` say of the course checkout (a sample must change neither),
+    or its files where there is no checkout (sample_grading.git_state)."""
     return sample_grading.git_state(ROOT)
 
 

@@ -14,6 +14,8 @@ import subprocess
 import zipfile
 from typing import Iterable, List, Optional, Sequence
 
+from course_checks.gitignore import not_ignored_files
+
 TEMPLATES = os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "autograder")
 ENTRY_POINTS = ("setup.sh", "run_autograder")
 # Not needed to grade: the sample submissions and build output.
@@ -39,41 +41,8 @@ def repo_files(repo: str) -> List[str]:
     if listed is not None and listed.returncode == 0:
         found = listed.stdout.decode().split("\0")
     else:
-        found = _walk_not_ignored(repo)
+        found = not_ignored_files(repo)
     return sorted({p for p in found if p and not answer(p)})
-
-
-def _walk_not_ignored(repo: str) -> List[str]:
-    """Every file under `repo` that the .gitignore at its root does not ignore (its patterns:
-    `/anchored`, `folder/`, `*.glob`, `name`), .git itself left out."""
-    patterns: List[str] = []
-    ignore_file = os.path.join(repo, ".gitignore")
-    if os.path.exists(ignore_file):
-        with open(ignore_file) as f:
-            patterns = [line.strip() for line in f if line.strip() and not line.startswith("#")]
-    found = []
-    for folder, dirs, files in os.walk(repo):
-        rel_folder = os.path.relpath(folder, repo)
-        rel_folder = "" if rel_folder == "." else rel_folder + "/"
-        dirs[:] = [d for d in dirs if d != ".git" and not ignored(rel_folder + d + "/", patterns)]
-        found += [rel_folder + name for name in files if not ignored(rel_folder + name, patterns)]
-    return found
-
-
-def ignored(rel: str, patterns: Iterable[str]) -> bool:
-    """Whether .gitignore `patterns` ignore the path `rel` (a folder's ends with '/')."""
-    name = rel.rstrip("/").rsplit("/", 1)[-1]
-    for pattern in patterns:
-        folder_only = pattern.endswith("/")
-        body = pattern.strip("/")
-        if folder_only and not rel.endswith("/"):
-            continue
-        if pattern.startswith("/") or "/" in body:
-            if fnmatch.fnmatch(rel.rstrip("/"), body):
-                return True
-        elif fnmatch.fnmatch(name, body):
-            return True
-    return False
 
 
 def _add(zf: zipfile.ZipFile, path: str, name: str) -> None:

@@ -87,7 +87,8 @@ def test_a_ros2_package_fails_before_anything_is_built(tmp_path, monkeypatch):
 
 def test_autograder_files_without_git_follow_the_gitignore(tmp_path):
     """The course image has no .git: the zip's files then come from a walk that honours .gitignore."""
-    from course_grader.autograder import ignored, repo_files
+    from course_grader.autograder import repo_files
+    from course_checks.gitignore import ignored
     patterns = ["/.venv/", "/catkin_ws/build/", "__pycache__/", "*.pyc", "/autograder.zip"]
     assert ignored(".venv/", patterns) and ignored("catkin_ws/build/", patterns)
     assert ignored("src/a/__pycache__/", patterns) and ignored("src/a/x.pyc", patterns)

@@ -8,7 +8,9 @@ output in the sample's Gradescope results.json; the cause, when given, must be t
 """
 from __future__ import annotations
 
+import hashlib
 import json
+import os
 import re
 import shutil
 import subprocess
@@ -17,6 +19,7 @@ from pathlib import Path
 from typing import Dict, List, Optional, Sequence, Tuple
 
 from course_checks.nodes import NodeProcess
+from course_checks.gitignore import not_ignored_files
 
 STOP_TIMEOUT_S = 30.0
 MESSAGE_CHARS = 2500
@@ -56,13 +59,48 @@ class BackgroundGrading:
         shutil.rmtree(self.folder, ignore_errors=True)
 
 
+def not_a_checkout(root: Path) -> str:
+    """Why `root` is not the top of a git checkout ("" when it is): the course image copies the
+    tree without .git (`make docker-check` runs the suite in /course), a machine may lack git."""
+    if not shutil.which("git"):
+        return "git is not installed"
+    top = subprocess.run(["git", "-C", str(root), "rev-parse", "--show-toplevel"], stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, text=True, check=False)
+    if top.returncode != 0:
+        return "%s is not a git checkout (%s)" % (root, top.stderr.strip())
+    if Path(top.stdout.strip()).resolve() != Path(root).resolve():
+        return "%s is not a git checkout of its own (it is inside %s)" % (root, top.stdout.strip())
+    return ""
+
+
 def git_state(root: Path, *paths: str) -> str:
     """What `git status` and `git diff` say of the checkout at `root` (of `paths` in it, if given):
-    a sample's grading must change neither."""
+    a sample's grading must change neither. Where `root` is no checkout (not_a_checkout), the same
+    question is asked of the files themselves: each file its .gitignore does not ignore, with its
+    mode and a digest of its content, so a file written, added, removed or made executable still
+    shows."""
+    if not_a_checkout(root):
+        return files_state(root, *paths)
+
     def git(*args: str) -> str:
         return subprocess.run(["git", "-C", str(root)] + list(args) + (["--"] + list(paths) if paths else []),
                               stdout=subprocess.PIPE, text=True, check=False).stdout
     return git("status", "--porcelain", "--untracked-files=all") + git("diff")
+
+
+def files_state(root: Path, *paths: str) -> str:
+    """Each file under `root` (under `paths` in it, if given) that its .gitignore does not ignore:
+    its path, mode and SHA-256 (a link's target), a line each."""
+    inside = [str(Path(p).resolve()) for p in paths]
+    lines = []
+    for rel in sorted(not_ignored_files(str(root))):
+        path = Path(root) / rel
+        if inside and not any(str(path.resolve()).startswith(p + "/") or str(path.resolve()) == p for p in inside):
+            continue
+        mode = path.lstat().st_mode
+        what = os.readlink(path) if path.is_symlink() else hashlib.sha256(path.read_bytes()).hexdigest()
+        lines.append("%o %s %s" % (mode, what, rel))
+    return "\n".join(lines)
 
 
 def expectations(samples: Sequence[Path]) -> List[Tuple[str, str, Dict]]:

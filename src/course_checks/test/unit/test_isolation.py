@@ -35,12 +35,13 @@ def test_a_port_below_the_ephemeral_range_is_free_and_out_of_the_kernels_picks(t
     ranges.write_text("40000\t60999\n")
     ports = {isolation.port_below_ephemeral_range(ranges=str(ranges), lowest=39990) for _ in range(20)}
     assert ports <= set(range(39990, 40000))
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", ports.pop()))
-    with socket.socket() as taken:  # the only port left below the range is taken: the kernel's pick
-        taken.bind(("127.0.0.1", 39999))
-        ranges.write_text("40000 60999\n")
-        assert isolation.port_below_ephemeral_range(ranges=str(ranges), lowest=39999) != 39999
+    # A port someone holds is never given. The held one is the kernel's pick, not a fixed number:
+    # on this machine 39990-39999 lie inside the real ephemeral range, where any process may hold one.
+    with socket.socket() as taken:
+        taken.bind(("127.0.0.1", 0))
+        port = taken.getsockname()[1]
+        ranges.write_text("%d 60999\n" % (port + 1))
+        assert isolation.port_below_ephemeral_range(ranges=str(ranges), lowest=port) != port
 
 
 def test_token_kill_reaches_a_setsid_double_forked_process():

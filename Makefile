@@ -2,11 +2,11 @@
 SHELL := /bin/bash
 ROOT := $(abspath $(dir $(lastword $(MAKEFILE_LIST))))
 WS := $(ROOT)/catkin_ws
-# The reference solutions (solutions/, under the texts' package names) are an overlay of their own,
+# The built-in course's reference solution (courses/robotics_labs/solution/, under the texts' package names) is an overlay of its own,
 # solutions_ws, chained on the course workspace: the course (catkin_ws) holds infrastructure only.
-# The student image has no solutions/ and so no overlay.
+# The student image has no course solution/ and so no overlay.
 SOLUTIONS_WS := $(ROOT)/solutions_ws
-HAVE_SOLUTIONS := $(wildcard $(ROOT)/solutions/*/package.xml)
+HAVE_SOLUTIONS := $(wildcard $(ROOT)/courses/robotics_labs/solution/*/package.xml)
 # Every ROS command runs in the course's environment, with the venv's python3 first; the tests and
 # benchmarks in the reference overlay's (the grader re-runs itself in the course's alone).
 ROSENV := source $(WS)/devel/setup.bash &&
@@ -33,7 +33,7 @@ build: ## deps, then catkin_make in catkin_ws (the course) and solutions_ws (the
 demo: build ## a private master, turtlesim and a short scripted scene; the canvas saved as a PNG in output/
 	@$(ROSENV) python3 $(ROOT)/tools/demo.py
 
-test: build ## every test (pytest: src, solutions, tests), in the reference overlay's environment
+test: build ## every test (pytest: src, courses, tests), in the reference overlay's environment
 	@$(REFENV) cd $(ROOT) && python3 -m pytest
 
 # make flake-hunt K=10: the whole suite K times in a row, failures per test (docs/testing.md).

@@ -93,7 +93,8 @@ def reference_runs(runs: int, jobs: List[str]) -> None:
 
 
 def student_packages() -> List[str]:
-    from course_milestones.registry import MILESTONES
+    from course_milestones import course_file
+    MILESTONES = course_file.load(course_file.builtin_course_dir()).milestones
     return sorted({p for m in MILESTONES for p in m.packages})
 
 
@@ -103,7 +104,7 @@ def make_class(scratch: Path, size: int) -> Path:
     packages = student_packages()
     for n in range(1, size + 1):
         for pkg in packages:
-            shutil.copytree(ROOT / "solutions" / pkg, classroom / ("student%02d" % n) / pkg, symlinks=True)
+            shutil.copytree(ROOT / "courses" / "robotics_labs" / "solution" / pkg, classroom / ("student%02d" % n) / pkg, symlinks=True)
     print("class of %d submissions (packages: %s)" % (size, " ".join(packages)), flush=True)
     return classroom
 

@@ -88,7 +88,7 @@ def submission(folder: Path) -> Path:
     from grade_bench import student_packages  # the same packages the class bench hands in
     sub = folder / STUDENT
     for pkg in student_packages():
-        shutil.copytree(ROOT / "solutions" / pkg, sub / pkg, symlinks=True)
+        shutil.copytree(ROOT / "courses" / "robotics_labs" / "solution" / pkg, sub / pkg, symlinks=True)
     return sub
 
 
@@ -223,7 +223,7 @@ def milestones(gradings: List[Grading]) -> Dict[str, Tuple[float, float, int, in
 
 def report(label: str, gradings: List[Grading], jobs: int) -> None:
     print("\n%s: one submission (the reference's %d packages), --jobs %d, %d round(s), medians, load %s:"
-          % (label, len(list((ROOT / "solutions").glob("*/package.xml"))), jobs, len(gradings), load()))
+          % (label, len(list((ROOT / "courses" / "robotics_labs" / "solution").glob("*/package.xml"))), jobs, len(gradings), load()))
     for name, value in phases(gradings):
         print("  %-34s %7.1f s" % (name, value))
     print("\n  %-16s %7s %7s %9s %s" % ("milestone", "run s", "check s", "other s", "verdicts"))

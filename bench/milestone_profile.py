@@ -10,7 +10,7 @@ adds the kinds up over all milestones: what a whole grading costs, by kind.
 
     python3 bench/milestone_profile.py                      # every milestone of the reference
     python3 bench/milestone_profile.py --only chatter arch  # some
-    python3 bench/milestone_profile.py tests/submissions/lab2_chatter_scripts --only chatter
+    python3 bench/milestone_profile.py courses/robotics_labs/samples/lab2_chatter_scripts --only chatter
 """
 from __future__ import annotations
 
@@ -121,7 +121,8 @@ def main() -> int:
     parser.add_argument("submissions", nargs="*", help="submissions (default: the reference)")
     parser.add_argument("--only", nargs="+", help="milestones (default: all)")
     opts = parser.parse_args()
-    from course_milestones.registry import MILESTONES
+    from course_milestones import course_file
+    MILESTONES = course_file.load(course_file.builtin_course_dir()).milestones
     names = opts.only or [m.name for m in MILESTONES]
     scratch = Path(tempfile.mkdtemp(prefix="milestone-profile-"))
     scratch.chmod(0o755)

@@ -4,7 +4,7 @@ assertion (issue 30, "Its time for a class of 30").
 
 The class: N students, each holding every package of the reference solutions (13 packages: the
 whole course handed in) with their own names (every identifier the student could choose, suffixed
-per student) and one package of a sample submission of this checkout (tests/submissions, in turn),
+per student) and one package of a sample submission of this checkout (courses/robotics_labs/samples, in turn),
 compared against the reference solutions and catkin_create_pkg's output as boilerplate, as
 `grade` does. Prints the class, the packages and pairs compared, the pairs listed and the seconds
 (median of --rounds).
@@ -28,7 +28,7 @@ sys.path.insert(0, str(ROOT / "src" / "course_milestones" / "src"))
 
 from course_grader import similarity, submissions  # noqa: E402
 
-SOLUTIONS = ROOT / "solutions"
+SOLUTIONS = ROOT / "courses" / "robotics_labs" / "solution"
 # Names a student chooses: a function, a variable, a class (not ROS's API, which all share).
 _OWN_NAME = re.compile(r"\b(def|class)\s+([A-Za-z_]\w*)")
 
@@ -44,7 +44,7 @@ def renamed(folder: Path, suffix: str) -> None:
 
 
 def make_class(dest: Path, size: int) -> dict:
-    samples = sorted(p for p in (ROOT / "tests" / "submissions").iterdir()
+    samples = sorted(p for p in (ROOT / "courses" / "robotics_labs" / "samples").iterdir()
                      if (p / "expected.json").is_file() and not (p / "derive.json").exists())
     students = {}
     for i in range(size):

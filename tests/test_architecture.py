@@ -27,7 +27,7 @@ from course_testkit import package_scan as scan
 
 ROOT = Path(__file__).resolve().parents[1]
 SRC = str(ROOT / "src")
-SOLUTIONS = str(ROOT / "solutions")  # the reference solutions: the exercises, apart from the course
+SOLUTIONS = str(ROOT / "courses" / "robotics_labs" / "solution")  # the built-in course's reference: the exercises, apart from the course
 ARCHITECTURE_DOC = ROOT / "docs" / "architecture.md"
 ROLES = ("exercise", "simulator", "library", "tool", "test_support", "grading")
 # importer's role -> roles whose Python modules it may import (besides messages, and itself).
@@ -132,7 +132,7 @@ def test_grading_importing_the_test_support_is_caught(tmp_path):
 
 def test_exercises_are_the_solutions_folder_and_nothing_else():
     """The course (src/) holds infrastructure only; every exercise (a reference solution) is in
-    solutions/, which holds nothing else: a student's package is never completed by ours."""
+    courses/robotics_labs/solution/, which holds nothing else: a student's package is never completed by ours."""
     course, solutions = roles(SRC), roles(SOLUTIONS)
     assert sorted(n for n, r in course.items() if r == "exercise") == []
     assert solutions and sorted(n for n, r in solutions.items() if r != "exercise") == []

@@ -420,7 +420,7 @@ def test_make_targets_named(command, targets):
     ("src/turtlesim/node.py:12:3,", ["src/turtlesim/node.py"]),
     ("src/<pkg>/test/unit/", []),
     ("src/X/", []),
-    ("tests/submissions/attack_*", []),
+    ("courses/robotics_labs/samples/attack_*", []),
     ("src/course_grader/...", []),
     ("~/catkin_ws/src/chatter", []),
     ("catkin_ws/devel/setup.bash", []),

@@ -1,4 +1,4 @@
-"""Grade every sample submission under tests/submissions/ in one grader run, and check each
+"""Grade every sample submission under courses/robotics_labs/samples/ in one grader run, and check each
 verdict against the sample's expected.json:
   {"<milestone>": {"passed": true}} or {"<milestone>": {"passed": false, "reason": "<regex>"}}
 The regex must match the milestone's output in the sample's Gradescope results.json (the
@@ -43,7 +43,7 @@ from course_testkit.sample_grading import BackgroundGrading
 from course_testkit.samples import materialise
 
 ROOT = Path(__file__).resolve().parents[1]
-ALL_SAMPLES = sorted(p.parent for p in ROOT.glob("tests/submissions/*/expected.json"))
+ALL_SAMPLES = sorted(p.parent for p in ROOT.glob("courses/robotics_labs/samples/*/expected.json"))
 
 
 def needs_isolation(sample: Path) -> bool:

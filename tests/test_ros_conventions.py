@@ -20,7 +20,7 @@ from course_testkit import package_scan as scan
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SRC = os.path.join(ROOT, "src")
-SOLUTIONS = os.path.join(ROOT, "solutions")  # the reference solutions, an overlay of their own
+SOLUTIONS = os.path.join(ROOT, "courses", "robotics_labs", "solution")  # the built-in course's reference, an overlay of its own
 CATKIN_LINT = os.path.join(ROOT, ".venv", "bin", "catkin_lint")
 
 # Python modules that are not catkin packages of the same name -> their rosdep key.

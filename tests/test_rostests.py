@@ -1,5 +1,7 @@
-"""Run every package's rostest files (src/*/test/*.test and the reference solutions'
-solutions/*/test/*.test), each with its own master.
+"""Run every package's rostest files (src/*/test/*.test and the reference solution's
+courses/robotics_labs/solution/*/test/*.test), and every milestone of the built-in course against
+its reference solution (the overlay sourced: checks/NAME.test, or a data milestone's launch as
+the grader writes it), each with its own master.
 
 They run through course_checks.rostest_runner, the same runner and pass rule the grader uses
 (exit code 0 and JUnit XML with at least one test and no failure), so they never touch a
@@ -21,9 +23,14 @@ from typing import Dict, Iterator
 import pytest
 
 from course_checks.rostest_runner import run_rostest
+from course_grader.runner import rostest_of
+from course_milestones import course_file
 
 ROOT = Path(__file__).resolve().parents[1]
-TEST_FILES = sorted(ROOT.glob("src/*/test/*.test")) + sorted(ROOT.glob("solutions/*/test/*.test"))
+TEST_FILES = sorted(ROOT.glob("src/*/test/*.test")) + sorted(ROOT.glob("courses/robotics_labs/solution/*/test/*.test"))
+MILESTONES = course_file.load(course_file.builtin_course_dir()).milestones
+# A milestone stands in the list as courses/robotics_labs/milestones/<id>: its run is rostest_of's.
+MILESTONE_RUNS = {Path(course_file.builtin_course_dir()) / "milestones" / m.name: m for m in MILESTONES}
 TIMEOUT_S = 240
 OUTPUT_TAIL_LINES = 80
 JOBS = int(os.environ.get("COURSE_ROSTEST_JOBS", "3"))
@@ -36,11 +43,16 @@ def runs(request: pytest.FixtureRequest, tmp_path_factory: pytest.TempPathFactor
     selected = [item.callspec.params["test_file"] for item in request.session.items
                 if getattr(item, "originalname", "") == "test_rostest" and item.module is request.module]
     folder = tmp_path_factory.mktemp("rostests")
+
+    def run(path: Path) -> Future:
+        results = folder / ("%s-%s" % (path.parts[-3], path.stem))
+        if path not in MILESTONE_RUNS:
+            return pool.submit(run_rostest, path.parts[-3], path.name, results_dir=str(results), timeout=TIMEOUT_S)
+        results.mkdir(parents=True)
+        package, test_file, args = rostest_of(MILESTONE_RUNS[path], str(results))
+        return pool.submit(run_rostest, package, test_file, args, results_dir=str(results), timeout=TIMEOUT_S)
     with ThreadPoolExecutor(max_workers=JOBS) as pool:
-        futures = {path: pool.submit(run_rostest, path.parts[-3], path.name,
-                                     results_dir=str(folder / ("%s-%s" % (path.parts[-3], path.stem))),
-                                     timeout=TIMEOUT_S)
-                   for path in selected}
+        futures = {path: run(path) for path in selected}
         try:
             yield futures
         finally:
@@ -48,7 +60,8 @@ def runs(request: pytest.FixtureRequest, tmp_path_factory: pytest.TempPathFactor
                 future.cancel()
 
 
-@pytest.mark.parametrize("test_file", TEST_FILES, ids=lambda p: "%s/%s" % (p.parts[-3], p.name))
+@pytest.mark.parametrize("test_file", TEST_FILES + sorted(MILESTONE_RUNS),
+                         ids=lambda p: "%s/%s" % (p.parts[-3], p.name))
 def test_rostest(test_file: Path, runs: Dict[Path, Future]) -> None:
     result = runs[test_file].result()  # each run ends within TIMEOUT_S (run_rostest kills it then)
     tail = "\n".join(result.output.splitlines()[-OUTPUT_TAIL_LINES:])

@@ -22,7 +22,7 @@ esac
 sudo=""
 [ "$(id -u)" -eq 0 ] || sudo="sudo"
 have_solutions=0
-compgen -G "$root/solutions/*/package.xml" >/dev/null && have_solutions=1
+compgen -G "$root/courses/robotics_labs/solution/*/package.xml" >/dev/null && have_solutions=1
 
 steps_total=2  # the Debian packages, the course's venv
 [ "${COURSE_JUPYTER:-1}" = 0 ] || steps_total=$((steps_total + 1))
@@ -191,9 +191,9 @@ if [ "${COURSE_HUB:-0}" = 1 ]; then
   fi
 fi
 
-# The build: the course (infrastructure only) in catkin_ws; the reference solutions (solutions/,
+# The build: the course (infrastructure only) in catkin_ws; the reference solutions (courses/robotics_labs/solution/,
 # under the texts' package names) an overlay of their own, solutions_ws, chained on it. The student
-# image has no solutions/ and so no overlay.
+# image has no course solution/ and so no overlay.
 if [ "$build" -eq 1 ]; then
   step "catkin_make in catkin_ws, the course" "$root/catkin_ws/build.log" 60 catkin_make_in "$root/catkin_ws"
   if [ "$have_solutions" -eq 1 ]; then

@@ -23,7 +23,7 @@ server, terminals through the hub's proxy):
   workbench): the hub says why, and alice's server still answers;
 - the idle culler (jupyterhub-idle-culler against the hub's API) stops the idle servers; alice
   starts again and finds her files;
-- `hub_grade` snapshots the class and grades it: alice's chatter (tests/submissions'
+- `hub_grade` snapshots the class and grades it: alice's chatter (courses/robotics_labs/samples'
   lab2_chatter_scripts, chmod +x in her terminal) passes, bob's (lab2_chatter_no_chmod) fails
   with its reason, carol (nothing) gets no points; each reads their own report in ~/grades of
   their workbench, read-only, and only their own.
@@ -76,7 +76,7 @@ FAILING = "dave"        # a student whose server cannot start (a memory limit to
 TA = "tom"
 TOO_LITTLE_MEMORY = "8M"  # JupyterLab cannot answer in it (24M sometimes did, then died)
 MILESTONE = "chatter"
-SAMPLES = ROOT / "tests" / "submissions"
+SAMPLES = ROOT / "courses" / "robotics_labs" / "samples"
 FILES = {"alice": SAMPLES / "lab2_chatter_scripts" / "lab2" / "src" / "chatter",
          "bob": SAMPLES / "lab2_chatter_no_chmod" / "chatter"}
 # dave's server is given too little memory to start; the others keep the course's limit

@@ -52,7 +52,7 @@ EMULATION_PACKAGES = ("qemu-user-static", "binfmt-support")
 DOCKERFILE = ROOT / "docker" / "Dockerfile"
 BUILD_TIMES = "build-times.json"  # in the logs folder: each architecture's last build time, for `figures`
 # The correct chatter package the self-check grades (a graded sample of the test suite).
-CHATTER_SAMPLE = ROOT / "tests" / "submissions" / "lab2_chatter_scripts"
+CHATTER_SAMPLE = ROOT / "courses" / "robotics_labs" / "samples" / "lab2_chatter_scripts"
 # Under emulation a process runs several times slower: the checks wait this much longer.
 START_TIMEOUT_S = 600.0
 SELF_CHECK_TIMEOUT_S = 1800.0

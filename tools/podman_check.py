@@ -200,14 +200,16 @@ def reference_fingerprints() -> Dict[str, str]:
                 if p.is_file() and not p.is_symlink() and "__pycache__" not in p.parts
                 and p.stat().st_size >= MIN_ANSWER_BYTES}
     course = files(ROOT / "src")  # a sample may copy a course file (an attack replacing course_testkit)
-    found = {**files(ROOT / "solutions"), **files(ROOT / "tests" / "submissions")}
+    for handout in ROOT.glob("courses/*/starter"):  # or the code the texts hand out, which is no answer
+        course.update(files(handout))
+    found = {**files(ROOT / "courses" / "robotics_labs" / "solution"), **files(ROOT / "courses" / "robotics_labs" / "samples")}
     return {digest: path for digest, path in found.items() if digest not in course}
 
 
 def answers_in_image(image: str, log: Path) -> List[str]:
     """The files of `image` that are a reference solution's (by content, anywhere in its file
     system) or a package.xml naming a reference package; [] for an image without the answers."""
-    names = sorted(p.parent.name for p in (ROOT / "solutions").glob("*/package.xml"))
+    names = sorted(p.parent.name for p in (ROOT / "courses" / "robotics_labs" / "solution").glob("*/package.xml"))
     script = ("find / -xdev -type f -size -4M -size +%dc -print0 | xargs -0 sha256sum; "
               "find / -xdev -name package.xml -print0 | xargs -0 grep -l -E '<name>(%s)</name>' | sed 's/^/xml /'"
               % (MIN_ANSWER_BYTES - 1, "|".join(names)))
@@ -218,7 +220,7 @@ def answers_in_image(image: str, log: Path) -> List[str]:
     found = []
     for line in done.stdout.splitlines():
         digest, _, path = line.partition("  ")
-        if digest == "xml":
+        if digest == "xml" and "/starter/" not in path:  # a starter's package.xml is the handout's
             found.append("%s names a reference package" % path)
         elif digest in fingerprints:
             found.append("%s is %s" % (path, fingerprints[digest]))
@@ -535,7 +537,7 @@ def grade_in_container(sample: str, scratch: Path, log: Path) -> Tuple[Dict, Lis
     """run_autograder on one sample, in a fresh container of the autograder image, as root."""
     submission = scratch / "submissions" / sample
     results = scratch / "results" / sample
-    shutil.copytree(ROOT / "tests" / "submissions" / sample, submission)
+    shutil.copytree(ROOT / "courses" / "robotics_labs" / "samples" / sample, submission)
     (submission / "expected.json").unlink()
     results.mkdir(parents=True)
     code = run_in_image(AUTOGRADER_IMAGE, ["/autograder/run_autograder"], log,

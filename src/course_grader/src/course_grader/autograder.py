@@ -19,8 +19,8 @@ from course_checks.gitignore import not_ignored_files
 TEMPLATES = os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "autograder")
 ENTRY_POINTS = ("setup.sh", "run_autograder")
 # Not needed to grade: the sample submissions and build output.
-EXCLUDED_PREFIXES = ("tests/submissions/", "catkin_ws/build/", "catkin_ws/devel/", ".venv/",
-                     "solutions/", "solutions_ws/")  # the reference solutions: answers, never graded there
+EXCLUDED_PREFIXES = ("catkin_ws/build/", "catkin_ws/devel/", ".venv/",
+                     "solutions_ws/")  # the built-in course's reference overlay: answers, never graded there
 # A course folder's answers (docs/course_format.md).
 EXCLUDED_PATTERNS = ("courses/*/solution/*", "courses/*/samples/*")
 COURSE_NOTE = "course.txt"

@@ -185,6 +185,11 @@ def similarity_lines(pairs: List) -> List[str]:
             % (len(pairs), pairs[0].student_a, pairs[0].student_b, pairs[0].package, pairs[0].score)]
 
 
+def has_packages(folder: str) -> bool:
+    """Whether `folder` holds a catkin package (a course's solution/ that is more than a name)."""
+    return bool(submissions.find_packages(folder))
+
+
 def load_course(path: str) -> course_file.Course:
     """The course to grade against: `path`'s, else the built-in one."""
     return course_file.load(os.path.abspath(path) if path else course_file.builtin_course_dir())
@@ -198,7 +203,6 @@ def main(argv: Optional[List[str]] = None) -> int:
         print("cannot grade: the course file has errors:\n%s" % err, file=sys.stderr)
         return 2
     MILESTONES: List[Milestone] = course.milestones
-    builtin = course.root == course_file.builtin_course_dir()
     if opts.list:
         for m in MILESTONES:
             check = m.test_file and os.path.basename(m.test_file) or "%d steps" % len(m.steps)
@@ -226,7 +230,7 @@ def main(argv: Optional[List[str]] = None) -> int:
         print("--results-json needs exactly one submission", file=sys.stderr)
         return 2
     if reference:
-        solutions = workspace.reference_solutions(workspace.course_setup()) if builtin else course.solution
+        solutions = course.solution if course.solution and has_packages(course.solution) else None
         if solutions is None:
             print("no submission given, and this course has no reference solutions to grade (the student "
                   "image holds none): grade SUBMISSION... or --class DIR", file=sys.stderr)
@@ -265,7 +269,7 @@ def main(argv: Optional[List[str]] = None) -> int:
         if regrade_copy:
             shutil.rmtree(regrade_copy, ignore_errors=True)
     class_verdicts = class_outputs.merged(out, opts.regrade, verdicts, MILESTONES) if opts.regrade else verdicts
-    boilerplate = opts.boilerplate + [f for f in [workspace.reference_solutions(workspace.course_setup())] if f]
+    boilerplate = opts.boilerplate + [f for f in (course.solution, course.starter) if f]
     pairs = class_outputs.write(out, class_verdicts, MILESTONES, grader.sandbox.describe(), boilerplate)
     for line in class_view.summary(class_verdicts, MILESTONES) + similarity_lines(pairs):
         print(line)

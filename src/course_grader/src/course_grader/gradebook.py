@@ -10,7 +10,7 @@ from course_grader.verdict import Verdict
 
 
 def columns(verdicts: Sequence[Verdict], order: Sequence[Milestone]) -> List[Milestone]:
-    """The milestones graded for anyone, in the registry's order."""
+    """The milestones graded for anyone, in the course's order."""
     graded = {v.milestone.name for v in verdicts}
     return [m for m in order if m.name in graded]
 

@@ -64,12 +64,10 @@ SANDBOX_REPORT = "sandbox.json"
 
 
 def rostest_of(m: Milestone, run_dir: str) -> Tuple[str, str, List[str]]:
-    """The package, rostest file and arguments that check `m`: a built-in Python check's file in
-    course_milestones, a course's own (a path), or, for a data milestone, the file written here
-    that starts its world and the generic check node. A file outside any package is run as
-    course_milestones' (rostest looks its package up otherwise, and finds none)."""
-    if m.test_file and not os.path.isabs(m.test_file):
-        return MILESTONE_PACKAGE, m.test_file, []
+    """The package, rostest file and arguments that check `m`: its course's own checks/NAME.test, or,
+    for a data milestone, the file written here that starts its world and the generic check node.
+    Either is run by path, as course_milestones' (rostest looks its package up otherwise, and a
+    course folder is none)."""
     path = m.test_file
     if not path:
         path = os.path.join(run_dir, "%s.test" % m.name)

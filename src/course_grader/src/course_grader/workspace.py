@@ -4,7 +4,7 @@
 The course workspace is the one this package runs from (found from this module's location,
 then CMAKE_PREFIX_PATH), never a hard-coded path. It holds the course's infrastructure only
 (turtlesim, the simulator, the course_* packages). The reference solutions live apart, in
-`<checkout>/solutions` (their own overlay `solutions_ws` for the instructor's tests): a grading
+`courses/<course>/solution` (the built-in course's built as an overlay, `solutions_ws`): a grading
 runs in the course's environment alone (course_environment), and grades the reference as one
 more overlay, built and run like a student's.
 """
@@ -31,8 +31,7 @@ from course_grader.submissions import Package
 BUILD_TIMEOUT_S = 600.0
 PYTHON = "/usr/bin/python3"
 SETUP_ENV = "COURSE_WS_SETUP"  # override: the setup.bash of the course workspace
-# The reference solutions and their overlay, in the course checkout (absent from the student image).
-SOLUTIONS_DIR = "solutions"
+# The built-in course's reference solution is built as an overlay of its own (absent from the student image).
 SOLUTIONS_WS = "solutions_ws"
 
 
@@ -93,18 +92,12 @@ def course_root(setup_bash: str) -> str:
 
 
 def reference_folders(setup_bash: str) -> List[str]:
-    """The checkout's answers: the reference solutions and their overlay workspace (whether or not
-    they exist), and every course folder's solution and samples (docs/course_format.md)."""
+    """The checkout's answers: every course folder's solution and samples (docs/course_format.md),
+    and the overlay the built-in course's solution is built in (whether or not they exist)."""
     root = course_root(setup_bash)
     answers = sorted(glob.glob(os.path.join(root, "courses", "*", "solution"))
                      + glob.glob(os.path.join(root, "courses", "*", "samples")))
-    return [os.path.join(root, SOLUTIONS_DIR), os.path.join(root, SOLUTIONS_WS)] + answers
-
-
-def reference_solutions(setup_bash: str) -> Optional[str]:
-    """The folder of the reference solutions, None where there are none (the student image)."""
-    folder = reference_folders(setup_bash)[0]
-    return folder if glob.glob(os.path.join(folder, "*", "package.xml")) else None
+    return [os.path.join(root, SOLUTIONS_WS)] + answers
 
 
 def _inside(path: str, folders: Sequence[str]) -> bool:

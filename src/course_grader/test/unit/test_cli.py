@@ -18,9 +18,11 @@ def test_list_and_unknown_milestones(capsys):
     assert main(["--only", "no_such_milestone"]) == 2
 
 
-def test_without_submissions_or_reference_solutions_it_says_so(capsys, monkeypatch, tmp_path):
-    """The student image has no solutions/: `make grade` alone has nothing to grade."""
-    from course_grader import workspace
-    monkeypatch.setattr(workspace, "reference_solutions", lambda setup: None)
-    assert main(["--out", str(tmp_path / "grades")]) == 2
+def test_without_submissions_or_reference_solutions_it_says_so(capsys, tmp_path):
+    """The student image has no course solution/: `make grade` alone has nothing to grade."""
+    course = tmp_path / "course"
+    (course / "solution").mkdir(parents=True)  # a folder, but no package in it
+    (course / "course.yaml").write_text("name: c\ntitle: C\nsolution: solution\nmilestones:\n  - id: m\n    title: M\n"
+                                        "    text: T\n    steps:\n      - start: {rosrun: p n}\n")
+    assert main(["--course", str(course), "--out", str(tmp_path / "grades")]) == 2
     assert "no reference solutions" in capsys.readouterr().err

@@ -95,16 +95,16 @@ def test_autograder_files_without_git_follow_the_gitignore(tmp_path):
     assert ignored("autograder.zip", patterns) and not ignored("src/autograder.zip", patterns)
     assert not ignored("src/a/x.py", patterns) and not ignored("catkin_ws/buildx/", patterns)
     (tmp_path / ".gitignore").write_text("# built\n/.venv/\n*.pyc\n")
-    for rel in ("src/pkg/a.py", "src/pkg/a.pyc", ".venv/bin/python3", "setup.sh", "tests/submissions/x/y.py"):
+    for rel in ("src/pkg/a.py", "src/pkg/a.pyc", ".venv/bin/python3", "setup.sh", "courses/robotics_labs/samples/x/y.py"):
         (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)
         (tmp_path / rel).write_text("x")
     assert repo_files(str(tmp_path)) == [".gitignore", "setup.sh", "src/pkg/a.py"]
 
 
 def test_every_milestone_has_a_typical_duration():
-    from course_milestones.registry import MILESTONES
+    from course_milestones import course_file
     from course_grader.typical_durations import TYPICAL_S
-    assert sorted(TYPICAL_S) == sorted(m.name for m in MILESTONES)
+    assert sorted(TYPICAL_S) == sorted(m.name for m in course_file.load(course_file.builtin_course_dir()).milestones)
 
 
 def test_a_first_grading_into_a_fresh_out_starts_the_longest_runs_first(tmp_path, monkeypatch):
@@ -178,12 +178,10 @@ def test_a_submission_s_runs_go_on_while_the_next_one_builds(tmp_path, monkeypat
 
 
 def test_each_kind_of_milestone_is_run_by_its_rostest(tmp_path, monkeypatch):
-    """A built-in Python check by package and name; a data milestone by the file written into its
-    run folder (its world, then course_check), and a course's own check by its path, both as
+    """A data milestone by the file written into its run folder (its world, then course_check), and
+    a course's own Python check (the built-in course's as any other) by its path, both as
     course_milestones' files (rostest finds no package for a file outside one)."""
     monkeypatch.setattr(workspace, "package_dir", lambda name: "/pkgs/" + name)
-    assert runner.rostest_of(Milestone("chatter", "t", "x", "chatter.test", ("chatter",)), str(tmp_path)) == (
-        "course_milestones", "chatter.test", [])
     data = Milestone("talk", "t", "x", "", ("beginner_tutorials",), world=("turtlesim",), course_file="/c/course.yaml")
     package, path, args = runner.rostest_of(data, str(tmp_path))
     assert (package, path) == ("", str(tmp_path / "talk.test"))
@@ -191,7 +189,8 @@ def test_each_kind_of_milestone_is_run_by_its_rostest(tmp_path, monkeypatch):
     written = (tmp_path / "talk.test").read_text()
     assert 'type="turtlesim_node"' in written and 'type="course_check"' in written and "/c/course.yaml" in written
     own = Milestone("mine", "t", "x", "/c/checks/mine.test", ("p",))
-    assert runner.rostest_of(own, str(tmp_path))[:2] == ("", "/c/checks/mine.test")
+    assert runner.rostest_of(own, str(tmp_path)) == ("", "/c/checks/mine.test", [
+        "--package=course_milestones", "--pkgdir=/pkgs/course_milestones", "--results-filename=mine.xml"])
 
 
 class _SlowStdout:

@@ -43,11 +43,14 @@ def test_folder_lists_lose_the_entries_inside_given_folders(tmp_path):
     assert clean == {"PATH": "%s:/usr/bin" % outside, "HOME": str(inside)}  # only folder lists change
 
 
-def test_reference_solutions_are_found_only_where_they_hold_a_package(tmp_path):
+def test_every_course_folders_answers_are_reference_folders(tmp_path):
     setup = tmp_path / "catkin_ws" / "devel" / "setup.bash"
     setup.parent.mkdir(parents=True)
     setup.write_text("")
-    assert workspace.reference_solutions(str(setup)) is None  # the student image
-    (tmp_path / "solutions" / "chatter").mkdir(parents=True)
-    (tmp_path / "solutions" / "chatter" / "package.xml").write_text("<package/>")
-    assert workspace.reference_solutions(str(setup)) == str(tmp_path / "solutions")
+    for course in ("robotics_labs", "mine"):
+        for kind in ("solution", "samples", "starter", "checks"):
+            (tmp_path / "courses" / course / kind).mkdir(parents=True)
+    folders = workspace.reference_folders(str(setup))
+    assert folders[0] == str(tmp_path / workspace.SOLUTIONS_WS)
+    assert sorted(folders[1:]) == sorted(str(tmp_path / "courses" / c / k) for c in ("robotics_labs", "mine")
+                                         for k in ("solution", "samples"))  # starter/ and checks/ are no answers

@@ -24,11 +24,9 @@ BUILTIN = "robotics_labs"
 MILESTONE_ID = re.compile(r"^[a-z][a-z0-9_]*$")
 PACKAGE_NAME = re.compile(r"^[a-z][a-z0-9_]*$")
 TYPE_NAME = re.compile(r"^[A-Za-z]\w*/[A-Za-z]\w*$")
-COURSE_KEYS = ("name", "title", "solution", "samples", "milestones")
+COURSE_KEYS = ("name", "title", "solution", "samples", "starter", "milestones")
 MILESTONE_KEYS = ("id", "title", "text", "points", "packages", "world", "time_limit", "steps", "check")
 DEFAULT_TIME_LIMIT_S = 90.0
-# Where the Python checks of the built-in course live (course_milestones/test).
-CHECKS_DIR = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "test"))
 
 Path = Tuple[Any, ...]
 
@@ -49,6 +47,7 @@ class Course(NamedTuple):
     solution: Optional[str]  # the reference solution's folder, None when the course has none here
     samples: Optional[str]
     milestones: List[Milestone]
+    starter: Optional[str] = None  # the code the texts hand out (similarity's boilerplate), if any
 
     def by_name(self) -> Dict[str, Milestone]:
         return {m.name: m for m in self.milestones}
@@ -178,7 +177,7 @@ def parse(text: str, file: str, shown: str = "") -> Course:
         else:
             check.kind((key,), data[key], schema.STR)
     folders = {}
-    for key in ("solution", "samples"):
+    for key in ("solution", "samples", "starter"):
         if key in data and check.kind((key,), data[key], schema.STR):
             folder = os.path.normpath(os.path.join(root, data[key]))
             folders[key] = folder if os.path.isdir(folder) else None
@@ -201,7 +200,7 @@ def parse(text: str, file: str, shown: str = "") -> Course:
     if check.problems:
         raise CourseError(check.problems)
     return Course(str(data["name"]), str(data["title"]), root, file, folders.get("solution"),
-                  folders.get("samples"), milestones)
+                  folders.get("samples"), milestones, folders.get("starter"))
 
 
 def _milestone(check: _Checker, path: Path, item: Any, root: str, file: str) -> Optional[Milestone]:
@@ -247,18 +246,15 @@ def _milestone(check: _Checker, path: Path, item: Any, root: str, file: str) -> 
 
 
 def _check_file(check: _Checker, path: Path, name: str, root: str) -> str:
-    """The rostest file of a Python check: the course's checks/NAME, else course_milestones' test/NAME
-    (given by name, as the runner's `rostest course_milestones NAME` finds it)."""
+    """The rostest file of a Python check: the course's own checks/NAME (a course keeps its checks in
+    its folder, the built-in course as any other)."""
     if not name.endswith(".test") or "/" in name or name.startswith("."):
-        check.error(path, "%r: name a rostest file, NAME.test, in the course's checks/ folder or "
-                          "course_milestones/test" % name)
+        check.error(path, "%r: name a rostest file, NAME.test, in the course's checks/ folder" % name)
         return ""
     own = os.path.join(root, "checks", name)
     if os.path.isfile(own):
         return own
-    if os.path.isfile(os.path.join(CHECKS_DIR, name)):
-        return name
-    check.error(path, "%r: no such file in %s or in course_milestones/test" % (name, os.path.join(root, "checks")))
+    check.error(path, "%r: no such file in %s" % (name, os.path.join(root, "checks")))
     return ""
 
 

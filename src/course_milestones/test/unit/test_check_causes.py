@@ -12,6 +12,7 @@ once (MilestoneCase.failure_cause: the checks of the course's own tools) may hav
 Every cause key a node or a helper names is in causes.CAUSES.
 """
 import ast
+import re
 import unittest
 from pathlib import Path
 from typing import Dict, Iterator, List, Optional, Set, Tuple
@@ -19,11 +20,18 @@ from typing import Dict, Iterator, List, Optional, Set, Tuple
 import pytest
 
 from course_checks import artifacts
-from course_milestones import causes, keymap, messages, milestone_case, students, two_sims
+from course_milestones import causes, course_file, keymap, messages, milestone_case, students
 
 NODES = Path(__file__).resolve().parents[2] / "nodes"
-HELPERS = Path(causes.__file__).resolve().parent
-CHECKS = sorted(p for p in NODES.iterdir() if p.name.endswith("_check"))
+COURSES = Path(__file__).resolve().parents[4] / "courses"
+# The checks: course_check (every course's data milestones) and each course's own Python checks,
+# the file its checks/NAME.test runs (args="$(dirname)/FILE.py"); the helpers: this library's
+# modules and the other modules of a course's checks/ folder (its unit tests aside).
+RUN = re.compile(r'args="\$\(dirname\)/([\w.-]+\.py)')
+CHECKS = [NODES / "course_check"] + sorted({t.parent / name for t in COURSES.glob("*/checks/*.test")
+                                            for name in RUN.findall(t.read_text())})
+HELPERS = sorted(Path(causes.__file__).resolve().parent.glob("*.py")) + sorted(
+    p for p in COURSES.glob("*/checks/*.py") if p not in CHECKS and not p.name.startswith("test_"))
 
 # Helpers whose result (when it is a failure) is a causes.Finding.
 FINDING_HELPERS = {
@@ -164,10 +172,10 @@ def _keys_named(tree: ast.AST) -> List[Tuple[int, str]]:
 
 
 def test_there_are_checks():
-    """A node per Python check of the built-in course, and course_check for its data milestones."""
-    from course_milestones.registry import MILESTONES
-    python_checks = [m for m in MILESTONES if m.test_file]
-    assert len(CHECKS) == len(python_checks) + 1 and len(python_checks) >= 14, [p.name for p in CHECKS]
+    """A file per Python check of the built-in course, and course_check for its data milestones."""
+    python_checks = [m for m in course_file.load(course_file.builtin_course_dir()).milestones if m.test_file]
+    ours = [p for p in CHECKS if p.parent == Path(course_file.builtin_course_dir()) / "checks"]
+    assert len(ours) == len(python_checks) >= 14 and all(p.is_file() for p in CHECKS), [p.name for p in CHECKS]
 
 
 @pytest.mark.parametrize("path", CHECKS, ids=lambda p: p.name)
@@ -177,7 +185,7 @@ def test_every_failure_of_a_check_carries_its_cause(path):
         path.name, "\n".join(module.uncaused()))
 
 
-@pytest.mark.parametrize("path", CHECKS + sorted(HELPERS.glob("*.py")), ids=lambda p: p.name)
+@pytest.mark.parametrize("path", CHECKS + HELPERS, ids=lambda p: p.name)
 def test_the_keys_named_are_causes(path):
     unknown = [(line, key) for line, key in _keys_named(ast.parse(path.read_text())) if key not in causes.BY_KEY]
     assert not unknown, "%s names cause keys that are not in causes.CAUSES: %s" % (path.name, unknown)
@@ -227,11 +235,6 @@ def test_keymap_failures_carry_not_moving():
     result = keymap.SearchResult(keymap=None, missing={keymap.FORWARD: []}, exited_after=None, commands={})
     message = keymap.failure_message(result, "/turtle1/cmd_vel", "turtle1")
     assert causes.of(message) == "not_moving" and message.startswith("no key made turtle1 go forward")
-
-
-def test_missing_simulators_is_a_wrong_launch():
-    assert causes.of(two_sims.missing_simulators({})) == "wrong_launch"
-    assert two_sims.missing_simulators(dict.fromkeys(two_sims.NAMESPACES, "/sim")) == ""
 
 
 def test_interface_errors_name_their_cause():

@@ -1,5 +1,6 @@
 """course_file: a course.yaml read into milestones, every mistake reported as FILE:LINE: FIELD."""
 import os
+import tempfile
 import textwrap
 
 import pytest
@@ -31,8 +32,16 @@ milestones:
 """
 
 
+# A course folder whose checks/ holds the Python checks the texts below name.
+DEMO = tempfile.mkdtemp(prefix="demo-course-")
+os.makedirs(os.path.join(DEMO, "checks"))
+for _name in ("checkpoint3.test", "chatter.test"):
+    with open(os.path.join(DEMO, "checks", _name), "w") as _f:
+        _f.write("<launch/>")
+
+
 def parsed(text: str, tmp_path=None) -> course_file.Course:
-    folder = str(tmp_path) if tmp_path else "/nonexistent"
+    folder = str(tmp_path) if tmp_path else DEMO
     return course_file.parse(text, os.path.join(folder, "course.yaml"), "course.yaml")
 
 
@@ -52,7 +61,8 @@ def test_a_good_file_gives_its_milestones_with_defaults_filled():
     assert publishes["count"] == schema.PRIMITIVES["publishes"].param("count").default
     assert publishes["max_rate"] is None
     assert talker.steps[1].where == "course.yaml:12 (milestones[0].steps[1])"
-    assert talker.test_file == "" and patrol.test_file == "checkpoint3.test" and not patrol.steps
+    assert talker.test_file == "" and patrol.test_file == os.path.join(DEMO, "checks", "checkpoint3.test")
+    assert not patrol.steps
     assert patrol.points == 10.0 and patrol.time_limit == course_file.DEFAULT_TIME_LIMIT_S
 
 
@@ -128,6 +138,15 @@ def test_a_course_s_own_check_is_found_in_its_checks_folder(tmp_path):
     (tmp_path / "checks" / "mine.test").write_text("<launch/>")
     text = "name: x\ntitle: y\nmilestones:\n  - {id: a, title: t, text: x, check: mine.test}\n"
     assert parsed(text, tmp_path).milestones[0].test_file == str(tmp_path / "checks" / "mine.test")
+    text = text.replace("mine.test", "teleop.test")  # the built-in course's checks are no fallback
+    assert problems_in(text, tmp_path) == ["course.yaml:4: milestones[0].check: 'teleop.test': no such file in %s"
+                                           % (tmp_path / "checks")]
+
+
+def problems_in(text: str, folder) -> list:
+    with pytest.raises(CourseError) as err:
+        parsed(text, folder)
+    return err.value.problems
 
 
 def test_the_rostest_of_a_data_milestone_starts_its_world_and_the_generic_check():

@@ -1,9 +1,10 @@
-"""The sample submissions of tests/submissions as a student hands them in.
+"""A course's sample submissions (courses/<course>/samples/) as a student hands them in.
 
-A sample with a `derive.json` is a variant of another folder of this checkout (a reference
+A sample with a `derive.json` is a variant of another folder of its course (its reference
 solution, another sample), so that neither code nor answers are written twice: it is made in a
-temporary folder before grading, from {"copy": [[source, target], ...]} (folders of the checkout,
-copied into the sample, one over another), then the sample's own files over them, then
+temporary folder before grading, from {"copy": [[source, target], ...]} (folders of the course,
+relative to the course folder: `solution/chatter`, `samples/other`; copied into the sample, one
+over another), then the sample's own files over them, then
 {"remove": [path, ...]} and {"replace": [[path, old, new], ...]} (each `old` must be there).
 """
 from __future__ import annotations
@@ -13,7 +14,7 @@ import shutil
 from pathlib import Path
 
 CHECKOUT = Path(__file__).resolve().parents[4]
-SAMPLES_DIR = CHECKOUT / "tests" / "submissions"
+SAMPLES_DIR = CHECKOUT / "courses" / "robotics_labs" / "samples"  # the built-in course's
 
 
 def materialise(sample: Path, dest: Path) -> Path:
@@ -26,7 +27,7 @@ def materialise(sample: Path, dest: Path) -> Path:
     made = dest / sample.name
     shutil.rmtree(made, ignore_errors=True)
     for source, target in recipe.get("copy", []):
-        shutil.copytree(CHECKOUT / source, made / target, dirs_exist_ok=True,
+        shutil.copytree(sample.parent.parent / source, made / target, dirs_exist_ok=True,
                         ignore=shutil.ignore_patterns("__pycache__", "*.pyc"))
     shutil.copytree(sample, made, dirs_exist_ok=True, ignore=shutil.ignore_patterns("derive.json"))
     for rel in recipe.get("remove", []):

@@ -1,7 +1,6 @@
 """Imported first by this sample's talker: where the course's reference solutions show through to
 a student's process (a package ROS finds, a module Python imports, a path in the environment, and
-with FOLDERS the folders themselves: solutions/, solutions_ws/, the samples in tests/submissions,
-every course's solution/ and samples/), it says what it saw and exits, so the talker never
+with FOLDERS the folders themselves: solutions_ws/, every course's solution/ and samples/), it says what it saw and exits, so the talker never
 publishes and the milestone fails. The folders are hidden by the sandbox only: where student code runs with
 the grader's rights (isolation none) they are in sight, so the sample probe_no_reference_folders,
 the one that looks for them, needs isolation."""
@@ -27,10 +26,10 @@ def seen():
     listed = subprocess.run(["rospack", "list-names"], stdout=subprocess.PIPE, universal_newlines=True).stdout
     found = ["package %s" % p for p in sorted(PACKAGES & set(listed.split()))]
     found += ["module %s" % m for m in MODULES if importlib.util.find_spec(m) is not None]
-    found += ["%s=%s" % (k, v) for k, v in sorted(os.environ.items()) if "solutions" in v]
+    found += ["%s=%s" % (k, v) for k, v in sorted(os.environ.items()) if "solutions_ws" in v or "/solution" in v]
     for entry in os.environ.get("ROS_PACKAGE_PATH", "").split(os.pathsep) if FOLDERS else []:
         root = os.path.dirname(os.path.dirname(entry))
-        answers = [os.path.join(root, f) for f in ("solutions", "solutions_ws", "tests/submissions")] + sorted(
+        answers = [os.path.join(root, "solutions_ws")] + sorted(
             glob.glob(os.path.join(root, "courses", "*", "solution")) + glob.glob(os.path.join(root, "courses", "*",
                                                                                                "samples")))
         for path in answers:

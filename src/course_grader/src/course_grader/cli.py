@@ -31,7 +31,7 @@ import signal
 import sys
 import tempfile
 import time
-from typing import List, Optional, Set, Tuple
+from typing import List, Optional, Sequence, Set, Tuple
 
 from course_milestones import course_file
 from course_milestones.milestone import Milestone
@@ -185,6 +185,12 @@ def similarity_lines(pairs: List) -> List[str]:
             % (len(pairs), pairs[0].student_a, pairs[0].student_b, pairs[0].package, pairs[0].score)]
 
 
+def boilerplate_folders(course: course_file.Course, given: Sequence[str] = ()) -> List[str]:
+    """What every submission may hold without copying anyone: the folders given (--boilerplate),
+    the course's reference solution and the code its texts hand out (starter/), where it has them."""
+    return list(given) + [f for f in (course.solution, course.starter) if f]
+
+
 def has_packages(folder: str) -> bool:
     """Whether `folder` holds a catkin package (a course's solution/ that is more than a name)."""
     return bool(submissions.find_packages(folder))
@@ -269,7 +275,7 @@ def main(argv: Optional[List[str]] = None) -> int:
         if regrade_copy:
             shutil.rmtree(regrade_copy, ignore_errors=True)
     class_verdicts = class_outputs.merged(out, opts.regrade, verdicts, MILESTONES) if opts.regrade else verdicts
-    boilerplate = opts.boilerplate + [f for f in (course.solution, course.starter) if f]
+    boilerplate = boilerplate_folders(course, opts.boilerplate)
     pairs = class_outputs.write(out, class_verdicts, MILESTONES, grader.sandbox.describe(), boilerplate)
     for line in class_view.summary(class_verdicts, MILESTONES) + similarity_lines(pairs):
         print(line)

@@ -1,5 +1,6 @@
 """similarity: what is compared, what is boilerplate, and names a student's package.xml gives."""
 import os
+import shutil
 
 from course_grader import similarity
 
@@ -63,3 +64,55 @@ def test_only_valid_package_names_reach_catkin_create_pkg(tmp_path):
     similarity.created_package(["chatter", "../escaped", "-h", "Bad"], str(made))
     assert sorted(os.listdir(str(made))) == ["chatter"] and not (tmp_path / "escaped").exists()
     assert (made / "chatter" / "CMakeLists.txt").is_file()
+
+
+OTHER_SERVER = '''#!/usr/bin/env python3
+"""One Patrol server per turtle named on the command line."""
+import sys
+
+import rospy
+from geometry_msgs.msg import Twist
+from turtlesim.srv import TeleportAbsolute
+from turtle_patrol.srv import Patrol, PatrolResponse
+
+turtle = rospy.myargv(sys.argv)[1]
+rospy.init_node("patrol_" + turtle)
+pub = rospy.Publisher("/%s/cmd_vel" % turtle, Twist, queue_size=5)
+teleport = rospy.ServiceProxy("/%s/teleport_absolute" % turtle, TeleportAbsolute)
+state = {"twist": Twist()}
+
+
+def handle(req):
+    teleport(req.x, req.y, req.theta)
+    state["twist"].linear.x, state["twist"].angular.z = req.vel, req.omega
+    return PatrolResponse(state["twist"])
+
+
+rospy.Service("/%s/patrol" % turtle, Patrol, handle)
+rate = rospy.Rate(20)
+while not rospy.is_shutdown():
+    pub.publish(state["twist"])
+    rate.sleep()
+'''
+
+
+def test_the_code_a_course_hands_out_is_boilerplate(tmp_path):
+    """Lab 2's students keep the starter's patrol_client.py and Patrol.srv as handed out (the text says
+    not to edit the client): two servers written apart are no pair once the course's starter/ is
+    boilerplate, as `grade` makes it (cli.boilerplate_folders)."""
+    from course_grader import cli
+    from course_milestones import course_file
+    course = course_file.load(course_file.builtin_course_dir())
+    starter = os.path.join(course.starter, "lab2", "src", "turtle_patrol")
+    students = {}
+    for name, server in (("ann", CODE), ("bob", OTHER_SERVER)):
+        folder = tmp_path / name / "turtle_patrol"
+        shutil.copytree(starter, str(folder))
+        (folder / "src" / "patrol_server.py").write_text(server)
+        students[name] = str(tmp_path / name)
+    alike = similarity.similar_pairs(students, threshold=0.0, create_pkg=False)
+    left = similarity.similar_pairs(students, cli.boilerplate_folders(course), threshold=0.0, create_pkg=False)
+    print("starter alone: %.2f; with the starter as boilerplate: %s" % (alike[0].score, left and left[0].score))
+    assert alike[0].package == "turtle_patrol" and alike[0].score > 0.3  # the handout alone makes them alike
+    assert not left or left[0].score < 0.1
+    assert course.starter in cli.boilerplate_folders(course, ["/given"])

@@ -42,12 +42,13 @@ K ?= 10
 flake-hunt: build ## the whole suite K times in a row (K=10), failures per test (UNTIL_FAIL=1, ARGS=...)
 	@$(REFENV) cd $(ROOT) && python3 tools/flake_hunt.py $(if $(UNTIL_FAIL),--until-fail) $(K) $(ARGS)
 
-# make grade: our reference solutions, every milestone. make grade SUBMISSIONS=DIR: every entry of
-# DIR (folder, .zip, .tar.gz) is one student's submission. Results in $(GRADES) (default ./grades).
+# make grade: our reference solutions, every milestone (ONLY="teleop chatter": those milestones).
+# make grade SUBMISSIONS=DIR: every entry of DIR (folder, .zip, .tar.gz) is one student's submission.
+# Results in $(GRADES) (default ./grades).
 GRADES ?= $(ROOT)/grades
 grade: build ## grade the reference solutions, or each student in SUBMISSIONS=DIR; results in GRADES=./grades
 	@$(ROSENV) cd $(ROOT) && rosrun course_grader grade $(if $(SUBMISSIONS),--class $(abspath $(SUBMISSIONS))) \
-	  --out $(GRADES) $(if $(JOBS),--jobs $(JOBS))
+	  --out $(GRADES) $(if $(JOBS),--jobs $(JOBS)) $(if $(ONLY),--only $(ONLY))
 
 # A course's checks can fail: its reference solution passes every milestone and mutants of it fail
 # (docs/course_lint.md). COURSE=courses/NAME (default the built-in course), LINT_ARGS="--only chatter".

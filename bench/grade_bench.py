@@ -93,7 +93,7 @@ def reference_runs(runs: int, jobs: List[str]) -> None:
 
 
 def student_packages() -> List[str]:
-    from course_milestones import course_file
+    from course_format import course_file
     MILESTONES = course_file.load(course_file.builtin_course_dir()).milestones
     return sorted({p for m in MILESTONES for p in m.packages})
 

@@ -121,7 +121,7 @@ def main() -> int:
     parser.add_argument("submissions", nargs="*", help="submissions (default: the reference)")
     parser.add_argument("--only", nargs="+", help="milestones (default: all)")
     opts = parser.parse_args()
-    from course_milestones import course_file
+    from course_format import course_file
     MILESTONES = course_file.load(course_file.builtin_course_dir()).milestones
     names = opts.only or [m.name for m in MILESTONES]
     scratch = Path(tempfile.mkdtemp(prefix="milestone-profile-"))

@@ -25,6 +25,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src" / "course_grader" / "src"))
 sys.path.insert(0, str(ROOT / "src" / "course_milestones" / "src"))
+sys.path.insert(0, str(ROOT / "src" / "course_format" / "src"))
 
 from course_grader import similarity, submissions  # noqa: E402
 

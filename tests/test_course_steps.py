@@ -21,8 +21,7 @@ import rospkg
 
 from course_checks import junit
 from course_checks.rostest_runner import RostestResult, run_rostest
-from course_milestones import causes, course_file
-from course_milestones.steps import schema
+from course_format import causes, course_file, schema
 
 TIMEOUT_S = 150
 

@@ -2,7 +2,7 @@
 verdict against the sample's expected.json:
   {"<milestone>": {"passed": true}} or {"<milestone>": {"passed": false, "reason": "<regex>"}}
 The regex must match the milestone's output in the sample's Gradescope results.json (the
-failing check in words plus the student's log tails); a failure's "cause" (a course_milestones.causes
+failing check in words plus the student's log tails); a failure's "cause" (a course_format.causes
 key), when given, must be the one its results.json carries, and the class's failure_groups.csv must
 group the sample under it. Only the listed milestones are graded.
 A sample with a `derive.json` is a variant of another folder of this checkout (a reference

@@ -24,7 +24,7 @@ import pytest
 
 from course_checks.rostest_runner import run_rostest
 from course_grader.runner import rostest_of
-from course_milestones import course_file
+from course_format import course_file
 
 ROOT = Path(__file__).resolve().parents[1]
 TEST_FILES = sorted(ROOT.glob("src/*/test/*.test")) + sorted(ROOT.glob("courses/robotics_labs/solution/*/test/*.test"))

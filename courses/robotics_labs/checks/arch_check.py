@@ -17,7 +17,8 @@ from turtlesim.msg import Pose
 from turtlesim.srv import TeleportAbsolute
 
 from course_rospy import quick_exit
-from course_milestones import causes, discovery, guard, students
+from course_format import causes
+from course_milestones import discovery, guard, students
 from course_milestones.milestone_case import MilestoneCase, failure
 from course_milestones.trusted import TURTLESIM
 from course_milestones.turning import TurnTracker, heading_error, wrap

@@ -10,7 +10,7 @@ import rostest
 from turtlesim.msg import Color
 
 from course_rospy import quick_exit
-from course_milestones import causes
+from course_format import causes
 import two_sims
 from course_milestones import launch_files as lf
 from course_milestones.milestone_case import MilestoneCase

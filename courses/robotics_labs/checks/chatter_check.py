@@ -7,7 +7,8 @@ import rospy
 import rostest
 
 from course_rospy import quick_exit
-from course_milestones import causes, messages, students
+from course_format import causes
+from course_milestones import messages, students
 from course_milestones.discovery import script_hints, list_executables, topic_types
 from course_milestones.milestone_case import MilestoneCase
 from course_checks.recorders import TopicRecorder

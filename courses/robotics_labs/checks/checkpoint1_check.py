@@ -12,7 +12,8 @@ import rospy
 import rostest
 
 from course_rospy import quick_exit
-from course_milestones import causes, messages, students
+from course_format import causes
+from course_milestones import messages, students
 import closest_line
 import timestamped
 from course_milestones.discovery import script_hints, list_executables, topic_types, unbuilt_problems

@@ -23,7 +23,8 @@ from turtlesim.msg import Pose as PoseMsg
 from turtlesim.srv import Spawn
 
 from course_rospy import quick_exit
-from course_milestones import causes, guard, messages, students
+from course_format import causes
+from course_milestones import guard, messages, students
 import patrol
 from circles import PatrolRequest, Pose, farthest_off_circle, observed_centre, start_index
 from course_milestones.discovery import MASTER_POLL_S, script_hints, list_executables, system_state, unbuilt_problems

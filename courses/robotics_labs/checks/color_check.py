@@ -14,7 +14,8 @@ from turtlesim.msg import Color, Pose
 from turtlesim.srv import TeleportAbsolute
 
 from course_rospy import quick_exit
-from course_milestones import causes, students
+from course_format import causes
+from course_milestones import students
 import pen_spots as ps
 from course_milestones import guard
 from course_milestones.discovery import subscribes

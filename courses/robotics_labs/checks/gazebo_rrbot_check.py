@@ -17,7 +17,7 @@ from std_msgs.msg import Float64
 
 from course_rospy import quick_exit
 from course_milestones import guard
-from course_milestones import causes
+from course_format import causes
 from course_milestones.milestone_case import MilestoneCase, failure
 from course_milestones.trusted import GAZEBO
 from course_checks.recorders import TopicRecorder

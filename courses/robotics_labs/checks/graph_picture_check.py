@@ -17,7 +17,7 @@ import rostest
 from geometry_msgs.msg import Twist
 
 from course_rospy import quick_exit
-from course_milestones import causes
+from course_format import causes
 from course_milestones.milestone_case import MilestoneCase
 from course_checks.artifacts import artifact_path
 from course_checks.keyboard import PtyKeyboard

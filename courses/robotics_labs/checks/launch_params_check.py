@@ -13,7 +13,8 @@ from geometry_msgs.msg import Twist
 from turtlesim.msg import Pose
 
 from course_rospy import quick_exit
-from course_milestones import causes, students
+from course_format import causes
+from course_milestones import students
 from course_milestones import keyboard_probe as kp
 from course_milestones import keymap as km
 from course_milestones import launch_files as lf

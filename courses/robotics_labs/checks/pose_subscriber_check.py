@@ -17,7 +17,8 @@ import rostest
 from turtlesim.srv import TeleportAbsolute
 
 from course_rospy import quick_exit
-from course_milestones import causes, guard
+from course_format import causes
+from course_milestones import guard
 from course_milestones.discovery import subscribes, system_state
 from course_milestones.milestone_case import MilestoneCase
 from course_milestones.students import ONE_MESSAGE, not_found_message, start_registering

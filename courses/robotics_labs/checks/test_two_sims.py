@@ -1,5 +1,5 @@
 """two_sims: which of the two namespaced turtlesims a launch file started, and the cause when one is missing."""
-from course_milestones import causes
+from course_format import causes
 
 import two_sims
 

@@ -16,7 +16,8 @@ from turtlesim.msg import Pose
 from turtlesim.srv import TeleportAbsolute
 
 from course_rospy import quick_exit
-from course_milestones import causes, discovery
+from course_format import causes
+from course_milestones import discovery
 from course_milestones import launch_files as lf
 from course_milestones.milestone_case import MilestoneCase
 from course_milestones.students import Roslaunch

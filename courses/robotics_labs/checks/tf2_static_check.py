@@ -14,7 +14,7 @@ import rostest
 import tf2_ros
 
 from course_rospy import quick_exit
-from course_milestones import causes
+from course_format import causes
 from course_milestones.milestone_case import MilestoneCase
 
 from turtle_tf2.geometry import euler_from_quaternion

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from typing import Dict, List, Optional
 
-from course_milestones import causes
+from course_format import causes
 from course_milestones.discovery import MASTER_POLL_S, Registration, system_state
 from course_checks.artifacts import save_canvas
 from course_checks.waiting import wait_for

@@ -14,7 +14,8 @@ from geometry_msgs.msg import Twist
 from turtlesim.msg import Pose
 
 from course_rospy import quick_exit
-from course_milestones import causes, discovery
+from course_format import causes
+from course_milestones import discovery
 import two_sims
 from course_milestones import launch_files as lf
 from course_milestones.milestone_case import MilestoneCase

@@ -17,7 +17,7 @@ import re
 from typing import Callable, Dict, Iterable, List, NamedTuple, Optional, Sequence, Set
 
 from course_grader import student_files
-from course_milestones import causes
+from course_format import causes
 
 SUMMARY_LINES = 25
 MAX_UNDEFINED = 6

@@ -8,7 +8,7 @@ import csv
 import os
 from typing import Callable, Dict, List, Sequence
 
-from course_milestones.milestone import Milestone
+from course_format.milestone import Milestone
 
 from course_grader import class_view, gradebook, gradescope, report, similarity
 from course_grader.verdict import Verdict

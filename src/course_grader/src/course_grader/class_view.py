@@ -1,5 +1,5 @@
 """The class at a glance, for a TA: per milestone how many passed and how long a run took, the
-failures grouped by their cause (course_milestones.causes) across students, largest group first,
+failures grouped by their cause (course_format.causes) across students, largest group first,
 and the class's scores as a histogram. Written beside gradebook.csv as milestones.csv and
 failure_groups.csv, shown first in report.html and, shortly, in the grader's terminal summary."""
 from __future__ import annotations
@@ -11,8 +11,8 @@ import threading
 from types import ModuleType
 from typing import Dict, List, NamedTuple, Optional, Sequence
 
-from course_milestones import causes
-from course_milestones.milestone import Milestone
+from course_format import causes
+from course_format.milestone import Milestone
 
 from course_grader.gradebook import columns
 from course_grader.verdict import Verdict

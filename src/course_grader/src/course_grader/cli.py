@@ -33,8 +33,8 @@ import tempfile
 import time
 from typing import List, Optional, Sequence, Set, Tuple
 
-from course_milestones import course_file
-from course_milestones.milestone import Milestone
+from course_format import course_file
+from course_format.milestone import Milestone
 from course_sandbox import leftovers, levels
 from course_sandbox.policy import Limits, MiB
 

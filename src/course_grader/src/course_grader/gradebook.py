@@ -4,7 +4,7 @@ from __future__ import annotations
 import csv
 from typing import Dict, List, Sequence
 
-from course_milestones.milestone import Milestone
+from course_format.milestone import Milestone
 
 from course_grader.verdict import Verdict
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 import json
 from typing import Dict, List, Mapping, Sequence
 
-from course_milestones.milestone import Milestone
+from course_format.milestone import Milestone
 
 from course_grader.verdict import FAILED, Verdict
 

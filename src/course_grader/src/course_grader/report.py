@@ -10,7 +10,7 @@ import html
 import os
 from typing import Dict, List, Sequence
 
-from course_milestones.milestone import Milestone
+from course_format.milestone import Milestone
 
 from course_grader import class_view, similarity
 from course_grader.gradebook import columns

@@ -18,7 +18,7 @@ import os
 import re
 from typing import List, NamedTuple, Optional, Sequence, Tuple
 
-from course_milestones import causes
+from course_format import causes
 
 MAX_MANIFEST_BYTES = 1024 * 1024
 # The environment catkin evaluates package.xml's conditions in, as far as this course goes.

@@ -32,8 +32,9 @@ import zipfile
 from concurrent.futures import ThreadPoolExecutor
 from typing import Callable, Dict, List, NamedTuple, Optional, Sequence, Tuple
 
-from course_milestones.milestone import Milestone
-from course_milestones import causes, course_file, unbuilt
+from course_format.milestone import Milestone
+from course_format import causes, course_file
+from course_milestones import unbuilt
 from course_milestones.scripts import script_problems
 from course_checks import junit
 from course_checks.artifacts import ENV_VAR as ARTIFACTS_VAR

@@ -17,8 +17,9 @@ import re
 import stat
 from typing import Dict, Iterable, List, NamedTuple, Optional, Sequence, Tuple
 
-from course_milestones import causes, scripts
-from course_milestones.milestone import Milestone
+from course_format import causes
+from course_milestones import scripts
+from course_format.milestone import Milestone
 from course_checks.isolation import MAX_FILE_BYTES
 
 from course_grader.submissions import Package
@@ -45,7 +46,7 @@ class Verdict(NamedTuple):
     elapsed: float = 0.0
     artifacts_dir: str = ""
     notes: str = ""  # what the sandbox saw (a limit the student's code hit), shown pass or fail
-    cause: str = ""  # why it failed, as a course_milestones.causes key ("": not known, see cause_key)
+    cause: str = ""  # why it failed, as a course_format.causes key ("": not known, see cause_key)
 
     @property
     def points(self) -> float:

@@ -18,7 +18,7 @@ import shlex
 import shutil
 from typing import Dict, Iterable, List, NamedTuple, Optional, Sequence, Set
 
-from course_milestones import causes
+from course_format import causes
 from course_sandbox import env_paths
 from course_sandbox.run import LimitHits, capture_oneshot, run_oneshot
 from course_checks import run_gate

@@ -3,8 +3,8 @@ written again for a regrade (class_outputs.merged), and the report's first secti
 import csv
 import json
 
-from course_milestones import causes
-from course_milestones.milestone import Milestone
+from course_format import causes
+from course_format.milestone import Milestone
 
 from course_grader import class_outputs, class_view, gradescope, report
 from course_grader.verdict import Verdict

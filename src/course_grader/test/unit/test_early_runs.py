@@ -6,7 +6,7 @@ import threading
 
 from hypothesis import given, settings, strategies as st
 
-from course_milestones.milestone import Milestone
+from course_format.milestone import Milestone
 from course_checks import run_gate
 from course_checks.rostest_runner import RostestResult
 

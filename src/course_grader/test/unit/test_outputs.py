@@ -1,7 +1,7 @@
 """gradebook.csv, Gradescope results.json, report.html and the build-failure summary."""
 import json
 
-from course_milestones.milestone import Milestone
+from course_format.milestone import Milestone
 
 from course_grader import gradebook, gradescope, report
 from course_grader.verdict import Verdict

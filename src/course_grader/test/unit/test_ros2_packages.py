@@ -1,5 +1,5 @@
 """ros2_packages: a ROS 2 (ament) package named as such before catkin_make stops on it."""
-from course_milestones import causes
+from course_format import causes
 
 from course_grader import ros2_packages
 

@@ -7,7 +7,7 @@ import sys
 import threading
 import time
 
-from course_milestones.milestone import Milestone
+from course_format.milestone import Milestone
 from course_checks.rostest_runner import RostestResult
 
 from course_grader import runner, workspace
@@ -102,7 +102,7 @@ def test_autograder_files_without_git_follow_the_gitignore(tmp_path):
 
 
 def test_every_milestone_has_a_typical_duration():
-    from course_milestones import course_file
+    from course_format import course_file
     from course_grader.typical_durations import TYPICAL_S
     assert sorted(TYPICAL_S) == sorted(m.name for m in course_file.load(course_file.builtin_course_dir()).milestones)
 

@@ -101,7 +101,7 @@ def test_the_code_a_course_hands_out_is_boilerplate(tmp_path):
     not to edit the client): two servers written apart are no pair once the course's starter/ is
     boilerplate, as `grade` makes it (cli.boilerplate_folders)."""
     from course_grader import cli
-    from course_milestones import course_file
+    from course_format import course_file
     course = course_file.load(course_file.builtin_course_dir())
     starter = os.path.join(course.starter, "lab2", "src", "turtle_patrol")
     students = {}

@@ -2,7 +2,7 @@
 import json
 import os
 
-from course_milestones.milestone import Milestone
+from course_format.milestone import Milestone
 
 from course_grader import verdict
 from course_grader.submissions import Package
@@ -112,6 +112,6 @@ def test_what_a_run_printed_adds_only_causes_the_files_did_not_name(tmp_path):
                                             "NameError: name 'raw_input' is not defined\n")
     found = verdict.output_hints(str(tmp_path))
     assert [getattr(h, "cause", "") for h in found] == ["no_shebang", "python2"]
-    from course_milestones import causes
+    from course_format import causes
     from_files = [causes.finding("no_shebang", "chatter/scripts/talker.py has no #! line")]
     assert [getattr(h, "cause", "") for h in verdict.output_hints(str(tmp_path), from_files)] == ["python2"]

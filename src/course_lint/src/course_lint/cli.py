@@ -17,7 +17,7 @@ import sys
 import tempfile
 from typing import Dict, List, Optional
 
-from course_milestones import course_file
+from course_format import course_file
 
 from course_lint import generic
 from course_lint.lint import MilestoneLint, Outcome, lint_milestone

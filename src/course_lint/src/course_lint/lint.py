@@ -16,8 +16,8 @@ import sys
 from typing import Dict, List, NamedTuple, Optional, Sequence, Set, Tuple
 
 from catkin_pkg.packages import find_packages
-from course_milestones.course_file import Course
-from course_milestones.milestone import Milestone
+from course_format.course_file import Course
+from course_format.milestone import Milestone
 
 from course_lint import used_files
 from course_lint.mutants import Mutant, Operator, package_mutants

@@ -1,8 +1,8 @@
 """What course-lint reads from the grader (results.json) and the lines it prints of it."""
 import json
 
-from course_milestones.course_file import Course
-from course_milestones.milestone import Milestone
+from course_format.course_file import Course
+from course_format.milestone import Milestone
 
 from course_lint import cli, lint, mutants
 

@@ -1,6 +1,6 @@
 """A data milestone's mutants come from the files its steps start: scripts by name, C++
 executables by their sources, launch files and the package's nodes they start, CMakeLists.txt."""
-from course_milestones.milestone import Milestone, Step
+from course_format.milestone import Milestone, Step
 
 from course_lint import used_files
 from course_lint.lint import step_names

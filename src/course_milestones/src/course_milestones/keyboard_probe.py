@@ -14,7 +14,8 @@ from typing import Callable, List, NamedTuple, Optional, Sequence, Tuple
 import rosgraph
 import rospy
 
-from course_milestones import causes, keymap as km
+from course_format import causes
+from course_milestones import keymap as km
 from course_milestones.discovery import CALLER, node_uris, sends_to
 from course_milestones.students import REGISTER_TIMEOUT, wait_for_publisher
 from course_checks.artifacts import artifact_path

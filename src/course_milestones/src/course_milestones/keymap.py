@@ -18,7 +18,7 @@ import math
 import string
 from typing import Dict, List, NamedTuple, Optional, Sequence, Set, Tuple
 
-from course_milestones import causes
+from course_format import causes
 
 FORWARD, BACKWARD, LEFT, RIGHT = "forward", "backward", "left", "right"
 DIRECTIONS = (FORWARD, BACKWARD, LEFT, RIGHT)  # also the search order: each differs from the one before

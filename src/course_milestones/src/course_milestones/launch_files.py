@@ -26,7 +26,8 @@ import roslaunch.core
 import roslaunch.rlutil
 import rosgraph.names
 
-from course_milestones import causes, students
+from course_format import causes
+from course_milestones import students
 from course_milestones.discovery import launch_file_names, package_dir
 from course_milestones.launch_dump import FORMAT
 from course_checks.nodes import find_executable

@@ -68,7 +68,7 @@ FindDefinition = Callable[[str], Optional[str]]
 
 class InterfaceError(Exception):
     """Why a message or service class cannot be had, as a sentence for the student; `cause`, the
-    course_milestones.causes key of a check that fails with it."""
+    course_format.causes key of a check that fails with it."""
     cause = "not_generated"
 
 

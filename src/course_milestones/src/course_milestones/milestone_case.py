@@ -17,7 +17,7 @@ import unittest
 
 from course_checks import run_gate
 
-from course_milestones import causes
+from course_format import causes
 from course_checks.artifacts import artifact_dir
 
 

@@ -23,7 +23,7 @@ import os
 import re
 from typing import Iterator, List, Tuple
 
-from course_milestones import causes
+from course_format import causes
 
 # Build products and tool folders: never a student's script.
 SKIPPED_DIRS = {"build", "devel", "install", "logs", ".git", "__pycache__", ".catkin_tools", "__MACOSX"}

@@ -34,7 +34,8 @@ from course_sandbox.run import RunSandbox
 
 import rospkg
 
-from course_milestones import causes, master_log
+from course_format import causes
+from course_milestones import master_log
 from course_milestones.discovery import (CALLER, Registration, describe as describe_names, list_executables,
                                          new_registrations, node_uris, own_names, package_dir,
                                          registrations_with_uris)

@@ -15,7 +15,7 @@ import os
 import re
 from typing import List
 
-from course_milestones import causes
+from course_format import causes
 from course_milestones.scripts import SKIPPED_DIRS
 
 _FUNCTIONS = {"msg": "add_message_files", "srv": "add_service_files", "action": "add_action_files"}

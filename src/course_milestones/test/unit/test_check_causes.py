@@ -1,4 +1,4 @@
-"""Every failure of every Python check carries its cause (course_milestones.causes): read from the
+"""Every failure of every Python check carries its cause (course_format.causes): read from the
 check nodes' source, each `self.fail(msg)`, each `self.assert*(..., msg)` and each `raise` gives a
 message that is a causes.Finding where it is made, so a new check, or a new assertion in one, that
 fails without a cause fails here. A message counts as a Finding when it is
@@ -20,7 +20,8 @@ from typing import Dict, Iterator, List, Optional, Set, Tuple
 import pytest
 
 from course_checks import artifacts
-from course_milestones import causes, course_file, keymap, messages, milestone_case, students
+from course_format import causes, course_file
+from course_milestones import keymap, messages, milestone_case, students
 
 NODES = Path(__file__).resolve().parents[2] / "nodes"
 COURSES = Path(__file__).resolve().parents[4] / "courses"

@@ -3,7 +3,7 @@ import os
 
 import pytest
 
-from course_milestones import causes
+from course_format import causes
 from course_milestones.discovery import list_executables
 from course_milestones.scripts import script_problems
 

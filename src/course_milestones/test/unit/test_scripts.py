@@ -1,5 +1,5 @@
 """course_milestones.scripts: the one detector of scripts rosrun cannot start."""
-from course_milestones import causes
+from course_format import causes
 from course_milestones.scripts import output_problems, script_problems
 
 

@@ -1,7 +1,7 @@
 """A data milestone's steps name a node that exited by what a check saw it do first: exited_early
 when no check saw it work (a listener without rospy.spin() registers, then exits), node_exited once
 a `publishes` or `prints` step passed on it (no master needed: the processes are stand-ins)."""
-from course_milestones import causes
+from course_format import causes
 from course_milestones.steps import run
 from course_milestones.steps.state import Started, StepState
 

@@ -7,7 +7,8 @@ from geometry_msgs.msg import Pose2D, Twist
 from hypothesis import given, settings, strategies as st
 from std_msgs.msg import String
 
-from course_milestones.steps import motion, predicates, schema
+from course_format import schema
+from course_milestones.steps import motion, predicates
 from course_milestones.steps.predicates import FieldMissing, describe, field, holds, problem, rate, rate_problem
 
 # Any value a message field, a parameter or a service answer may hold, nested.

@@ -219,7 +219,7 @@ milestones:
 
 
 def test_the_loader_takes_the_drawing_steps_and_says_what_is_wrong_with_one(tmp_path):
-    from course_milestones import course_file
+    from course_format import course_file
     assert tuple(course_file.SHAPE_PARAMS) == shapes.SHAPES
     path = tmp_path / "course.yaml"
     path.write_text(DRAWING_COURSE % "")

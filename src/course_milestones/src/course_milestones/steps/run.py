@@ -11,9 +11,8 @@ from __future__ import annotations
 
 from typing import Callable, Dict, Optional, Sequence
 
-from course_milestones import causes
-from course_milestones.steps import (built, drawing, frames, params, schema, services, starting, terminal, topics,
-                                     turtles)
+from course_format import causes, schema
+from course_milestones.steps import built, drawing, frames, params, services, starting, terminal, topics, turtles
 from course_milestones.steps.state import StepFailed, StepState, course_error
 
 Primitive = Callable[[StepState, Dict, str], None]

@@ -16,7 +16,8 @@ from typing import Callable, Dict, Mapping, Optional
 import rospkg
 import rospy
 
-from course_milestones import causes, discovery, launch_files, students
+from course_format import causes
+from course_milestones import discovery, launch_files, students
 from course_milestones.discovery import Registration, node_uris
 from course_milestones.steps.state import Started, StepFailed, StepState, course_error, failed
 from course_checks.waiting import wait_for

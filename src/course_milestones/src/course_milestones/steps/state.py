@@ -2,7 +2,7 @@
 the `start` steps began (by their `as` name), where each one's output stood at the last action
 (a `prints` step reads what came after), and the turtles' poses since then (`turtle_moves`).
 
-A check step that fails raises StepFailed with its finding (course_milestones.causes); a course
+A check step that fails raises StepFailed with its finding (course_format.causes); a course
 file's own mistake is course_error, a failed milestone that names the step's place in the file.
 """
 from __future__ import annotations
@@ -12,7 +12,7 @@ from typing import Callable, Dict, List, NamedTuple, Optional, Sequence, Set, Tu
 
 import rospy
 
-from course_milestones import causes
+from course_format import causes
 from course_milestones.discovery import new_registrations, system_state
 from course_checks.keyboard import PtyKeyboard
 from course_checks.recorders import TopicRecorder

@@ -1,5 +1,5 @@
 """What a milestone is: one gradable milestone of a course, read from its course file
-(course_milestones.course_file), checked by a rostest: a Python check's, or the generic
+(course_format.course_file), checked by a rostest: a Python check's, or the generic
 `course_check` running the milestone's steps."""
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ from typing import Any, Dict, NamedTuple, Tuple
 
 
 class Step(NamedTuple):
-    """One step of a data milestone: a primitive of course_milestones.steps.schema."""
+    """One step of a data milestone: a primitive of course_format.schema."""
 
     primitive: str
     params: Dict[str, Any]  # every parameter of the primitive, defaults filled in

@@ -2,7 +2,7 @@
 
 A TA writes this file, so every mistake in it is reported where it is, as
 `FILE:LINE: FIELD: what is wrong`, never as a traceback; all of a file's errors are reported at
-once. A milestone is either data (`steps`, primitives of course_milestones.steps.schema, run by the
+once. A milestone is either data (`steps`, primitives of course_format.schema, run by the
 generic check node `course_check`) or a Python check (`check: NAME.test`). No ROS import: the
 grader's command line reads this before any master runs.
 """
@@ -15,9 +15,9 @@ from xml.sax.saxutils import quoteattr
 
 import yaml
 
-from course_milestones import causes
-from course_milestones.milestone import Milestone, Step
-from course_milestones.steps import schema
+from course_format import causes
+from course_format.milestone import Milestone, Step
+from course_format import schema
 
 COURSE_FILE = "course.yaml"
 BUILTIN = "robotics_labs"
@@ -331,7 +331,7 @@ def _semantics(check: _Checker, path: Path, name: str, params: Dict[str, Any], n
     cause = params.get("cause")
     if isinstance(cause, str) and cause not in causes.BY_KEY:
         close = [k for k in causes.BY_KEY if _close(cause, k)]
-        check.error(path + ("cause",), "%r is no cause%s (known: course_milestones/causes.py)" % (
+        check.error(path + ("cause",), "%r is no cause%s (known: course_format/causes.py)" % (
             cause, " (did you mean %s?)" % close[0] if close else ""))
     node = params.get("node")
     if isinstance(node, str) and not node.startswith("/") and node not in names:

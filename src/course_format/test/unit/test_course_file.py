@@ -7,9 +7,9 @@ import pytest
 import yaml
 from hypothesis import given, settings, strategies as st
 
-from course_milestones import course_file
-from course_milestones.course_file import CourseError
-from course_milestones.steps import schema
+from course_format import course_file
+from course_format.course_file import CourseError
+from course_format import schema
 
 GOOD = """\
 name: demo

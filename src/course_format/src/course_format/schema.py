@@ -1,13 +1,13 @@
 """The primitives a course file's `steps:` may name, with the parameters each takes.
 
 A step is a one-key mapping, `{primitive: {parameter: value, ...}}`. This module is the format's
-one source of truth: the course file loader (course_milestones.course_file) validates every step
+one source of truth: the course file loader (course_format.course_file) validates every step
 against it (an unknown primitive or parameter, a missing or mistyped value is an error naming the
 file, the line and the field), and the check node (course_milestones.steps.run) implements each
 primitive named here. No ROS import: it is read where no master runs.
 
 Actions change the world (start the student's node, publish, call, type keys, set a parameter);
-checks observe it and fail with a cause (course_milestones.causes). Steps run in order; the first
+checks observe it and fail with a cause (course_format.causes). Steps run in order; the first
 failing check ends the milestone with its finding.
 """
 from __future__ import annotations
@@ -141,7 +141,7 @@ _PRIMITIVES = (
 # Every check may name the cause its failure is grouped under (the class view's groups), when it
 # fails at what it checks: `prints` after a `set_param` fails as param_ignored. A failure that says
 # the node is gone or the course file is wrong keeps its own cause (steps.run.KEEPS_OWN_CAUSE).
-CAUSE = Param("cause", STR, doc="the cause (course_milestones.causes) this check's failure is grouped under")
+CAUSE = Param("cause", STR, doc="the cause (course_format.causes) this check's failure is grouped under")
 PRIMITIVES: Dict[str, Primitive] = {
     p.name: p if p.action else p._replace(params=p.params + (CAUSE,)) for p in _PRIMITIVES}
 

@@ -85,7 +85,7 @@ class Finding(str):
 def finding(key: str, text: str) -> Finding:
     """`text` carrying the cause `key` (which must be in the vocabulary: a typo fails at once)."""
     if key not in BY_KEY:
-        raise ValueError("unknown cause %r (see course_milestones.causes.CAUSES)" % key)
+        raise ValueError("unknown cause %r (see course_format.causes.CAUSES)" % key)
     made = Finding(text)
     made.cause = key
     return made

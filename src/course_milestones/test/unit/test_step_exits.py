@@ -78,7 +78,3 @@ def test_a_steps_own_cause_does_not_hide_an_exit():
     finding = run.run_step(state, "prints", {"node": "listener", "pattern": "x", "within": 0, "cause": "wrong_value"},
                            "course.yaml:1")
     assert causes.of(finding) == "exited_early"
-
-
-def test_exited_says_which():
-    assert (causes.exited(True), causes.exited(False)) == ("node_exited", "exited_early")

@@ -1,4 +1,4 @@
-"""The generic check node `course_check` running data milestones (course_milestones.steps) against
+"""The generic check node `run_steps` running data milestones (course_milestones.steps) against
 the reference packages built in solutions_ws: each primitive passes on a correct step list, and
 fails on a wrong one with the cause it records (causes.json in the milestone's artifacts folder)
 and a reason that says what was seen.
@@ -418,15 +418,15 @@ EXPECTED: Dict[str, Optional[Tuple[str, str]]] = {
 
 
 def launch_xml(course_yaml: str, world, milestones, artifacts: str) -> str:
-    """A rostest with `world`'s trusted nodes and one course_check per milestone, each with its own
+    """A rostest with `world`'s trusted nodes and one run_steps per milestone, each with its own
     artifacts folder (what the grader's rostest, course_file.test_launch, holds for one)."""
     lines = ['<?xml version="1.0"?>', "<launch>"]
     for name in world:
         package, kind = schema.WORLDS[name]
         lines.append("  <node pkg=%s type=%s name=%s/>" % (quoteattr(package), quoteattr(kind), quoteattr(name)))
     for name in milestones:
-        lines += ['  <test test-name=%s name=%s pkg="course_milestones" type="course_check" time-limit="60">'
-                  % (quoteattr(name), quoteattr("course_check_" + name)),  # no student node's name
+        lines += ['  <test test-name=%s name=%s pkg="course_milestones" type="run_steps" time-limit="60">'
+                  % (quoteattr(name), quoteattr("run_steps_" + name)),  # no student node's name
                   "    <param name=\"course_file\" value=%s/>" % quoteattr(course_yaml),
                   "    <param name=\"milestone\" value=%s/>" % quoteattr(name),
                   "    <env name=\"COURSE_ARTIFACTS_DIR\" value=%s/>" % quoteattr(os.path.join(artifacts, name)),

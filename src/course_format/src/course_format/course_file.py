@@ -3,7 +3,7 @@
 A TA writes this file, so every mistake in it is reported where it is, as
 `FILE:LINE: FIELD: what is wrong`, never as a traceback; all of a file's errors are reported at
 once. A milestone is either data (`steps`, primitives of course_format.schema, run by the
-generic check node `course_check`) or a Python check (`check: NAME.test`). No ROS import: the
+generic check node `run_steps`) or a Python check (`check: NAME.test`). No ROS import: the
 grader's command line reads this before any master runs.
 """
 from __future__ import annotations
@@ -458,13 +458,13 @@ def milestone(course_yaml: str, milestone_id: str) -> Milestone:
 
 def test_launch(m: Milestone, pkg: str = "") -> str:
     """The rostest file that runs a data milestone: its world's trusted nodes, then the generic check
-    node `course_check` reading the milestone from its course file."""
+    node `run_steps` reading the milestone from its course file."""
     lines = ['<?xml version="1.0"?>', "<!-- Milestone %s (%s), written by the grader from %s -->"
              % (m.name, m.text.replace("--", "- -"), m.course_file.replace("--", "- -")), "<launch>"]
     for world in m.world:
         package, kind = schema.WORLDS[world]
         lines.append("  <node pkg=%s type=%s name=%s/>" % (quoteattr(package), quoteattr(kind), quoteattr(world)))
-    lines.append('  <test test-name=%s name="course_check" pkg="course_milestones" type="course_check" '
+    lines.append('  <test test-name=%s name="run_steps" pkg="course_milestones" type="run_steps" '
                  "time-limit=%s>" % (quoteattr(m.name), quoteattr("%g" % m.time_limit)))
     for key, value in (("course_file", m.course_file), ("milestone", m.name),
                        ("pkg", pkg or (m.packages[0] if m.packages else ""))):

@@ -1,6 +1,6 @@
 """What a milestone is: one gradable milestone of a course, read from its course file
 (course_format.course_file), checked by a rostest: a Python check's, or the generic
-`course_check` running the milestone's steps."""
+`run_steps` running the milestone's steps."""
 from __future__ import annotations
 
 from typing import Any, Dict, NamedTuple, Tuple

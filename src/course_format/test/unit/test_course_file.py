@@ -153,7 +153,7 @@ def test_the_rostest_of_a_data_milestone_starts_its_world_and_the_generic_check(
     talker = parsed(GOOD).milestones[0]
     launch = course_file.test_launch(talker)
     assert '<node pkg="turtlesim" type="turtlesim_node" name="turtlesim"/>' in launch
-    assert 'type="course_check" time-limit="90"' in launch
+    assert 'type="run_steps" time-limit="90"' in launch
     assert '<param name="milestone" value="talker"/>' in launch
     assert '<param name="pkg" value="beginner_tutorials"/>' in launch
 

@@ -178,7 +178,7 @@ def test_a_submission_s_runs_go_on_while_the_next_one_builds(tmp_path, monkeypat
 
 
 def test_each_kind_of_milestone_is_run_by_its_rostest(tmp_path, monkeypatch):
-    """A data milestone by the file written into its run folder (its world, then course_check), and
+    """A data milestone by the file written into its run folder (its world, then run_steps), and
     a course's own Python check (the built-in course's as any other) by its path, both as
     course_milestones' files (rostest finds no package for a file outside one)."""
     monkeypatch.setattr(workspace, "package_dir", lambda name: "/pkgs/" + name)
@@ -187,7 +187,7 @@ def test_each_kind_of_milestone_is_run_by_its_rostest(tmp_path, monkeypatch):
     assert (package, path) == ("", str(tmp_path / "talk.test"))
     assert args == ["--package=course_milestones", "--pkgdir=/pkgs/course_milestones", "--results-filename=talk.xml"]
     written = (tmp_path / "talk.test").read_text()
-    assert 'type="turtlesim_node"' in written and 'type="course_check"' in written and "/c/course.yaml" in written
+    assert 'type="turtlesim_node"' in written and 'type="run_steps"' in written and "/c/course.yaml" in written
     own = Milestone("mine", "t", "x", "/c/checks/mine.test", ("p",))
     assert runner.rostest_of(own, str(tmp_path)) == ("", "/c/checks/mine.test", [
         "--package=course_milestones", "--pkgdir=/pkgs/course_milestones", "--results-filename=mine.xml"])

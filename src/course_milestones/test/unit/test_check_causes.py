@@ -25,11 +25,11 @@ from course_milestones import keymap, messages, milestone_case, students
 
 NODES = Path(__file__).resolve().parents[2] / "nodes"
 COURSES = Path(__file__).resolve().parents[4] / "courses"
-# The checks: course_check (every course's data milestones) and each course's own Python checks,
+# The checks: run_steps (every course's data milestones) and each course's own Python checks,
 # the file its checks/NAME.test runs (args="$(dirname)/FILE.py"); the helpers: this library's
 # modules and the other modules of a course's checks/ folder (its unit tests aside).
 RUN = re.compile(r'args="\$\(dirname\)/([\w.-]+\.py)')
-CHECKS = [NODES / "course_check"] + sorted({t.parent / name for t in COURSES.glob("*/checks/*.test")
+CHECKS = [NODES / "run_steps"] + sorted({t.parent / name for t in COURSES.glob("*/checks/*.test")
                                             for name in RUN.findall(t.read_text())})
 HELPERS = sorted(Path(causes.__file__).resolve().parent.glob("*.py")) + sorted(
     p for p in COURSES.glob("*/checks/*.py") if p not in CHECKS and not p.name.startswith("test_"))
@@ -42,7 +42,7 @@ FINDING_HELPERS = {
     "missing_launch_file",    # launch_files: not_started
     "missing_simulators",     # two_sims: wrong_launch
     "failure_message",        # keymap: not_moving, node_exited, exited_early
-    "run_steps",              # steps.run: the failing step's Finding (course_check)
+    "run_steps",              # steps.run: the failing step's Finding (run_steps)
 }
 # Helpers returning a tuple whose element at that index is a Finding (or None).
 FINDING_IN_TUPLE = {"discover_keymap": 1}
@@ -173,7 +173,7 @@ def _keys_named(tree: ast.AST) -> List[Tuple[int, str]]:
 
 
 def test_there_are_checks():
-    """A file per Python check of the built-in course, and course_check for its data milestones."""
+    """A file per Python check of the built-in course, and run_steps for its data milestones."""
     python_checks = [m for m in course_file.load(course_file.builtin_course_dir()).milestones if m.test_file]
     ours = [p for p in CHECKS if p.parent == Path(course_file.builtin_course_dir()) / "checks"]
     assert len(ours) == len(python_checks) >= 14 and all(p.is_file() for p in CHECKS), [p.name for p in CHECKS]

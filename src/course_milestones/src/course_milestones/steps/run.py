@@ -1,6 +1,6 @@
-"""The runtime of a data milestone: each primitive of steps.schema mapped to the function that does
+"""The runtime of a data milestone: each primitive of course_format.schema mapped to the function that does
 it (one module per kind of thing it looks at), and the steps run in order until the first that
-fails. The generic check node (course_milestones' `course_check`) calls `run_steps`.
+fails. The node `run_steps` (course_milestones/nodes) calls run_steps() here.
 
 Every primitive takes (state, params, where): the milestone's shared StepState, the step's
 parameters with the schema's defaults filled in, and the step's place in the course file. A

@@ -17,8 +17,8 @@ from turtlesim.srv import Spawn
 from course_rospy import quick_exit
 from course_format import causes
 from course_milestones import students
-from course_milestones import keyboard_probe as kp
-from course_milestones import keymap as km
+import keyboard_probe as kp
+import keymap as km
 from course_milestones import guard
 from course_milestones.discovery import node_uris, publishes, topic_types
 from course_milestones.milestone_case import MilestoneCase

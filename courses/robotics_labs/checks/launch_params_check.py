@@ -15,8 +15,8 @@ from turtlesim.msg import Pose
 from course_rospy import quick_exit
 from course_format import causes
 from course_milestones import students
-from course_milestones import keyboard_probe as kp
-from course_milestones import keymap as km
+import keyboard_probe as kp
+import keymap as km
 from course_milestones import launch_files as lf
 from course_milestones.discovery import publishes
 from course_milestones.milestone_case import MilestoneCase

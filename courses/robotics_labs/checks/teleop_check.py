@@ -15,7 +15,7 @@ from turtlesim.msg import Pose
 from course_rospy import quick_exit
 from course_format import causes
 from course_milestones import students
-from course_milestones import keyboard_probe as kp
+import keyboard_probe as kp
 from course_milestones import launch_files as lf
 from course_milestones import guard
 from course_milestones.discovery import publishes, topic_types

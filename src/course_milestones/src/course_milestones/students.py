@@ -48,6 +48,7 @@ from course_checks.waiting import wait_for
 # What rospy prints when the master stops a node because a newer one took its name.
 SAME_NAME = "new node registered with same name"
 REGISTER_TIMEOUT = 15.0   # s: how long an executable on a terminal has to register what is asked
+RAW_WAIT = 1.0            # s: how long a key waits for the node's terminal to be in raw mode (PtyKeyboard.raw_wait)
 SETTLED = 3.0             # s: a node registered for this long with other topics is not the one asked for
 # Why a node that subscribed no longer does, while it still runs.
 ONE_MESSAGE = ("a node that takes one message (e.g. rospy.wait_for_message, ros::topic::waitForMessage) stops "

@@ -7,7 +7,7 @@ import time
 from typing import Dict, List
 
 from course_milestones import students
-from course_milestones.keyboard_probe import RAW_WAIT
+from course_milestones.students import RAW_WAIT
 from course_milestones.steps.state import StepState, course_error, failed
 from course_checks.waiting import wait_for
 

@@ -3,7 +3,9 @@
 discover_keymap() types keys into the node's terminal (keymap.KeyMapSearch decides which) and
 watches its velocity commands; with a Motion, each key found must also move the robot that way
 (one press per direction in all: the simulated Burger bucks when its commands reverse too often).
-The node itself is started by course_milestones.students (start_registering, Roslaunch).
+The node itself is started by course_milestones.students (start_registering, Roslaunch). A helper
+of the built-in course's keyboard checks (teleop, checkpoint2, launch_params, turtlebot): `import
+keyboard_probe as kp`.
 """
 from __future__ import annotations
 
@@ -15,16 +17,16 @@ import rosgraph
 import rospy
 
 from course_format import causes
-from course_milestones import keymap as km
 from course_milestones.discovery import CALLER, node_uris, sends_to
-from course_milestones.students import REGISTER_TIMEOUT, wait_for_publisher
+from course_milestones.students import RAW_WAIT, REGISTER_TIMEOUT, wait_for_publisher
 from course_checks.artifacts import artifact_path
 from course_checks.keyboard import PtyKeyboard
 from course_checks.recorders import TopicRecorder
 from course_checks.waiting import wait_for
 
+import keymap as km  # beside it in the course's checks/
+
 PROBE_WINDOW = 1.5        # s: how long a key press has to produce its command
-RAW_WAIT = 1.0            # s: how long a key waits for the node's terminal to be in raw mode
 PUBLISHER_SIDE_WAIT = 3.0  # s: how long wait_connected waits for the node to list our connection
 Pose = Tuple[float, float, float]
 

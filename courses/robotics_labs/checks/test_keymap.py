@@ -5,7 +5,9 @@ import math
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from course_milestones import keymap as km
+from course_format import causes
+
+import keymap as km
 
 ARROWS = {"up": (2.0, 0.0), "down": (-2.0, 0.0), "left": (0.0, 2.0), "right": (0.0, -2.0)}
 WASD = {"w": (1.0, 0.0), "s": (-1.0, 0.0), "a": (0.0, 1.0), "d": (0.0, -1.0)}
@@ -294,3 +296,9 @@ def test_skip_drops_the_next_probe_unpressed():
     assert s.next_probe() == km.Probe(km.FORWARD, "up", True)
     s.skip()
     assert s.next_probe() == km.Probe(km.FORWARD, "w", False) and s.result().presses == 1
+
+
+def test_keymap_failures_carry_not_moving():  # the checks fail with it as their message (test_check_causes)
+    result = km.SearchResult(keymap=None, missing={km.FORWARD: []}, exited_after=None, commands={})
+    message = km.failure_message(result, "/turtle1/cmd_vel", "turtle1")
+    assert causes.of(message) == "not_moving" and message.startswith("no key made turtle1 go forward")

@@ -10,7 +10,7 @@ arrow (KEY_SETS), so any four distinct keys of those sets are found.
 
 This module is the pure part of the search: which key to press next, what a velocity command
 means, and the sentence a student reads when a motion is missing. The ROS side
-(course_milestones.keyboard_probe) types the keys and records the commands.
+(keyboard_probe, beside it in the course's checks/) types the keys and records the commands.
 """
 from __future__ import annotations
 

@@ -74,7 +74,7 @@ def _run_autograder(root: Path) -> dict:
 
 @pytest.mark.parametrize("submission,passed", [
     (ROOT / "courses" / "robotics_labs" / "solution" / "chatter", True),  # our reference package, handed in as a student would
-    (ROOT / "tests" / "submissions" / "bad_wrong_name", False),
+    (ROOT / "courses" / "robotics_labs" / "samples" / "bad_wrong_name", False),
 ], ids=["good", "bad"])
 def test_run_autograder(autograder_zip: Path, tmp_path: Path, submission: Path, passed: bool) -> None:
     root = _gradescope_layout(tmp_path, autograder_zip, submission)

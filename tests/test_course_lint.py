@@ -51,6 +51,7 @@ def broken_course(folder: Path) -> Path:
     text = (BUILTIN / "course.yaml").read_text()
     text = re.sub(r"(?m)^solution: .*$", "solution: solution", text)
     (course / "course.yaml").write_text(re.sub(r"(?m)^samples: .*\n", "", text))
+    shutil.copytree(str(BUILTIN / "checks"), str(course / "checks"))  # a course's checks are in its folder
     shutil.copytree(str(ROOT / "courses" / "robotics_labs" / "solution" / "chatter"), str(course / "solution" / "chatter"), symlinks=True)
     pub = course / "solution" / "chatter" / "src" / "example_pub.py"
     pub.write_text(pub.read_text().replace('"chatter_talk"', '"chatter_elsewhere"'))

@@ -38,7 +38,7 @@ def scratch():
 
 
 def grade(out: Path, prefix: List[str], env: Dict[str, str]) -> str:
-    command = prefix + ["rosrun", "course_grader", "grade"] + [str(ROOT / "tests" / "submissions" / s)
+    command = prefix + ["rosrun", "course_grader", "grade"] + [str(ROOT / "courses" / "robotics_labs" / "samples" / s)
                                                                 for s in SAMPLES]
     command += ["--only", "chatter", "pose_subscriber", "--out", str(out)]
     done = subprocess.run(command, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,

@@ -102,7 +102,7 @@ def _tests_of(graded: Path, sample: str) -> Dict[str, Dict]:
 
 @pytest.mark.parametrize("sample,milestone,expected", expectations(), ids=lambda v: v if isinstance(v, str) else "")
 def test_verdict(graded: Path, sample: str, milestone: str, expected: Dict) -> None:
-    if ROOT / "tests" / "submissions" / sample not in SAMPLES:
+    if ROOT / "courses" / "robotics_labs" / "samples" / sample not in SAMPLES:
         pytest.skip("not graded: student code would run with the grader's rights here (isolation %s)" % ISOLATION)
     problem = sample_grading.verdict_problem(graded, sample, milestone, expected)
     assert not problem, problem
@@ -118,7 +118,7 @@ def test_the_class_failures_group_by_cause(graded: Path) -> None:
     groups = _csv(graded / "failure_groups.csv")
     students = {(g["milestone"], g["cause"]): g["students"].split() for g in groups}
     for sample, milestone, expected in expectations():
-        if "cause" in expected and ROOT / "tests" / "submissions" / sample in SAMPLES:
+        if "cause" in expected and ROOT / "courses" / "robotics_labs" / "samples" / sample in SAMPLES:
             assert sample in students.get((milestone, expected["cause"]), []), \
                 "%s is not in the group %s/%s: %s" % (sample, milestone, expected["cause"], groups)
     counts = [int(g["count"]) for g in groups]
@@ -155,7 +155,7 @@ def test_regrade_changes_one_student_only(graded: Path) -> None:
     others = {p: p.read_bytes() for p in out.glob("*/results.json") if p != mine}
     rows_before = _csv(out / "gradebook.csv")
     done = subprocess.run(["rosrun", "course_grader", "grade", "--regrade", student, "--only-from", "expected.json",
-                           "--out", str(out), str(ROOT / "tests" / "submissions" / student)],
+                           "--out", str(out), str(ROOT / "courses" / "robotics_labs" / "samples" / student)],
                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=300, check=False)
     assert done.returncode == 0, done.stdout
     assert json.loads(mine.read_text())["tests"][0]["status"] == "failed"
@@ -210,7 +210,7 @@ def test_no_log_tail_holds_a_line_of_the_sandbox(graded: Path) -> None:
              for name, test in _tests_of(graded, sample.name).items()
              for line in test["output"].splitlines() if "getcwd() failed" in line]
     assert not found, "\n".join(found)
-    if ROOT / "tests" / "submissions" / "lab2_chatter_shell_clean_log" in SAMPLES:
+    if ROOT / "courses" / "robotics_labs" / "samples" / "lab2_chatter_shell_clean_log" in SAMPLES:
         assert "talker starting" in _tests_of(graded, "lab2_chatter_shell_clean_log")["chatter"]["output"]
 
 

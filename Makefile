@@ -24,11 +24,11 @@ help: ## this list: every target, one line each (the comments above a target say
 # Set-up, one line per step with its time, apt's, pip's and catkin_make's output in the logs it
 # names (logs/, catkin_ws/build.log, solutions_ws/build.log); a failed step prints its log's tail.
 
-deps: ## install what is missing: Debian's ROS 1 packages, the venvs .venv and .venv-jupyter (tools/deps.sh)
-	@bash $(ROOT)/tools/deps.sh
+deps: ## install what is missing: Debian's ROS 1 packages, the venvs .venv and .venv-jupyter (setup/install.sh)
+	@bash $(ROOT)/setup/install.sh
 
 build: ## deps, then catkin_make in catkin_ws (the course) and solutions_ws (the reference solutions' overlay)
-	@bash $(ROOT)/tools/deps.sh --build
+	@bash $(ROOT)/setup/install.sh --build
 
 demo: build ## a private master, turtlesim and a short scripted scene; the canvas saved as a PNG in output/
 	@$(ROSENV) python3 $(ROOT)/tools/demo.py
@@ -82,7 +82,7 @@ jupyter: ## the student's workbench: JupyterLab at http://127.0.0.1:8888/lab?tok
 # The class's hub (docs/hub.md): JupyterHub at $(HUB_URL), each student a container of $(HUB_IMAGE)
 # (the student image) through podman's Docker API, accounts from $(HUB_CLASS_LIST), students' files in
 # $(HUB_DATA)/users/. Root. Its config: deploy/jupyterhub/jupyterhub_config.py; its plug-ins and commands:
-# the course_hub package in .venv-hub (tools/deps.sh installs it there with pip).
+# the course_hub package in .venv-hub (setup/install.sh installs it there with pip).
 HUB_DATA ?= /var/lib/ros-course-hub
 HUB_CLASS_LIST ?= $(ROOT)/deploy/jupyterhub/classlist.csv
 HUB_IMAGE ?= localhost/ros-course
@@ -91,13 +91,13 @@ HUB_URL ?= http://127.0.0.1:8000
 HUB_ENV := HUB_DATA='$(HUB_DATA)' HUB_CLASS_LIST='$(abspath $(HUB_CLASS_LIST))' HUB_IMAGE='$(HUB_IMAGE)' HUB_URL='$(HUB_URL)' \
   PATH='$(ROOT)/.hub/node/node_modules/.bin':"$$PATH"
 hub: ## the class's JupyterHub, each student a container of the student image (root; docs/hub.md)
-	@COURSE_HUB=1 bash $(ROOT)/tools/deps.sh
+	@COURSE_HUB=1 bash $(ROOT)/setup/install.sh
 	@$(HUB_ENV) $(ROOT)/.venv-hub/bin/course-hub --config $(ROOT)/deploy/jupyterhub/jupyterhub_config.py
 
 # The hand-out sheet of initial passwords, $(HUB_DATA)/initial-passwords.csv (the hub's start fills it for
 # users without a password: course-hub-passwords). RESET=alice gives alice a new one at once, while the hub runs or not.
 hub-password: ## the hand-out sheet of initial passwords; RESET=alice gives alice a new one
-	@COURSE_HUB=1 bash $(ROOT)/tools/deps.sh
+	@COURSE_HUB=1 bash $(ROOT)/setup/install.sh
 	@$(ROOT)/.venv-hub/bin/course-hub-passwords --data '$(HUB_DATA)' \
 	  --class-list '$(abspath $(HUB_CLASS_LIST))' $(foreach u,$(RESET),--reset $(u))
 
@@ -107,13 +107,22 @@ hub-grade: build ## at a deadline: every student's files snapshotted, graded, re
 	@$(ROSENV) rosrun course_hub hub_grade --data '$(HUB_DATA)' --class-list '$(abspath $(HUB_CLASS_LIST))' \
 	  $(foreach m,$(MILESTONES),--only $(m))
 
+# The end-to-end suites, tests/e2e/ (pytest's `e2e` marker, which make test leaves out: pytest.ini's addopts),
+# each run by its target below with its lines printed as they come (-s); their options in the environment.
+E2E := python3 -m pytest -m e2e -s
+# The podman suites and tools run as root before anything is built, in Debian's python3 without ROS: the
+# packages they import are plain Python without messages, taken from their source folders.
+PLAIN_PACKAGES := course_testkit course_checks course_sandbox course_net
+EMPTY :=
+PLAIN_PYTHON := PYTHONPATH='$(subst $(EMPTY) $(EMPTY),:,$(PLAIN_PACKAGES:%=$(ROOT)/src/%/src))' /usr/bin/python3
+
 # The hub end to end with real parts (root, podman; ~1.5 min, plus the image's build): the image, a hub,
 # seven students and a TA logging in over HTTP and in Chromium, isolation, the admin, culling, a failed
-# start, snapshot-and-grade, and every attack of a hostile student (docs/hub.md). Not in make test.
+# start, snapshot-and-grade, and every attack of a hostile student (docs/hub.md): tests/e2e/test_hub.py.
 # HUB_CHECK_ARGS="--image localhost/ros-course-hub --no-build" tries an image already built.
 hub-check: build ## the hub end to end with real parts: podman, students, a TA, attacks (root; not in test)
-	@COURSE_HUB=1 bash $(ROOT)/tools/deps.sh
-	@$(REFENV) cd $(ROOT) && python3 tools/hub_check.py $(HUB_CHECK_ARGS)
+	@COURSE_HUB=1 bash $(ROOT)/setup/install.sh
+	@$(REFENV) cd $(ROOT) && HUB_CHECK_ARGS='$(HUB_CHECK_ARGS)' $(E2E) tests/e2e/test_hub.py
 
 # Gradescope autograder: setup.sh + run_autograder + this repository; MILESTONES="chatter ..." grades only those,
 # COURSE=courses/NAME grades that course (its solution/ and samples/ left out, as every course's).
@@ -133,34 +142,37 @@ bench-grade: build ## the grader's trust and speed: the reference 20 times, a cl
 # docker/Dockerfile built and run by podman (root): the demo, make lab and make jupyter through their
 # published ports, then make grade and make test in containers; each step's time.
 # DOCKER_CHECK_ARGS="--skip-test" or "--rebuild"; COURSE_IMAGE=... INSTRUCTOR_IMAGE=... other tags.
-# See tools/podman_check.py.
+# See tests/e2e/test_image.py.
 docker-check: ## docker/Dockerfile's two images built by podman and tried: demo, lab, jupyter, grade, test (root)
-	@/usr/bin/python3 $(ROOT)/tools/podman_check.py docker-check $(DOCKER_CHECK_ARGS)
+	@cd $(ROOT) && DOCKER_CHECK_ARGS='$(DOCKER_CHECK_ARGS)' $(PLAIN_PYTHON) -m pytest -m e2e -s \
+	  tests/e2e/test_image.py::test_the_course_images
 
 # The Gradescope autograder as Gradescope runs it: setup.sh as root in a fresh container of the base
 # image, then run_autograder on a correct, a buggy, a non-building and an attack submission.
 autograder-check: ## the Gradescope autograder as Gradescope runs it, in fresh podman containers (root)
 	@$(MAKE) --no-print-directory autograder MILESTONES=chatter
-	@/usr/bin/python3 $(ROOT)/tools/podman_check.py autograder-check $(ROOT)/autograder.zip
+	@cd $(ROOT) && AUTOGRADER_ZIP='$(ROOT)/autograder.zip' $(PLAIN_PYTHON) -m pytest -m e2e -s \
+	  tests/e2e/test_image.py::test_the_autograder_as_gradescope_runs_it
 
 # The course image for linux/amd64 and linux/arm64 (Apple Silicon), both built here by podman (root) from
 # docker/Dockerfile, the arm64 one under qemu-user-static, joined in the manifest list ros-course-multiarch.
 # image-arm64-check: the arm64 image under emulation: the demo, course-check on a correct chatter package,
 # make jupyter answering over HTTP. image-figures: sizes, the demo's time emulated against native.
-# Hours of emulated work on a small machine; not part of make test. See docs/images.md.
+# Hours of emulated work on a small machine; not part of make test. tools/multiarch.py, tests/e2e/test_arm64.py,
+# docs/images.md.
 .PHONY: image-multiarch image-arm64-check image-figures
 image-multiarch: ## the course image for linux/amd64 and linux/arm64 (qemu), the manifest list ros-course-multiarch
-	@/usr/bin/python3 $(ROOT)/tools/multiarch.py image $(MULTIARCH_ARGS)
+	@$(PLAIN_PYTHON) $(ROOT)/tools/multiarch.py image $(MULTIARCH_ARGS)
 
 image-arm64-check: ## the arm64 image under emulation: the demo, course-check, make jupyter
-	@/usr/bin/python3 $(ROOT)/tools/multiarch.py check $(MULTIARCH_ARGS)
+	@cd $(ROOT) && MULTIARCH_ARGS='$(MULTIARCH_ARGS)' $(PLAIN_PYTHON) -m pytest -m e2e -s tests/e2e/test_arm64.py
 
 image-figures: ## the images' sizes, the demo's time emulated against native
-	@/usr/bin/python3 $(ROOT)/tools/multiarch.py figures $(MULTIARCH_ARGS)
+	@$(PLAIN_PYTHON) $(ROOT)/tools/multiarch.py figures $(MULTIARCH_ARGS)
 
 # ROS 1's own tutorials as an overlay on this workspace: built, their tests run, turtle_tf2's demos
 # (Python and C++) against our turtlesim. TUTORIALS=DIR holds ros_tutorials, geometry_tutorials and
-# common_tutorials (sources, never committed); not part of make test. See docs/noetic_cxx.md.
+# common_tutorials (sources, never committed); not part of make test. tests/e2e/test_tutorials.py, docs/noetic_cxx.md.
 .PHONY: tutorials-check
 ifneq ($(filter tutorials-check,$(MAKECMDGOALS)),)
 ifeq ($(TUTORIALS),)
@@ -168,7 +180,8 @@ $(error make tutorials-check TUTORIALS=DIR: the folder holding ros_tutorials, ge
 endif
 endif
 tutorials-check: build ## ROS 1's own tutorials as an overlay: built, tested, turtle_tf2's demos (TUTORIALS=DIR)
-	@$(ROSENV) cd $(ROOT) && python3 tools/tutorials_check.py $(abspath $(TUTORIALS)) $(TUTORIALS_CHECK_ARGS)
+	@$(ROSENV) cd $(ROOT) && TUTORIALS='$(abspath $(TUTORIALS))' TUTORIALS_CHECK_ARGS='$(TUTORIALS_CHECK_ARGS)' \
+	  $(E2E) tests/e2e/test_tutorials.py
 
 clean: ## the workspaces' build and devel spaces, their build logs and the set-up's logs/
 	rm -rf $(WS)/build $(WS)/devel $(WS)/build.log $(SOLUTIONS_WS)/build $(SOLUTIONS_WS)/devel $(SOLUTIONS_WS)/build.log \

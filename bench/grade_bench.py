@@ -29,6 +29,8 @@ from collections import Counter
 from pathlib import Path
 from typing import Dict, List, Tuple
 
+from course_testkit.benchmarks import student_packages
+
 ROOT = Path(__file__).resolve().parents[1]
 REFERENCE_TARGET_S = 30.0
 CLASS_TARGET_S_PER_30 = 12 * 60.0
@@ -90,12 +92,6 @@ def reference_runs(runs: int, jobs: List[str]) -> None:
     if times:
         print("one submission, full milestone set: median %.1f s, min %.1f s, max %.1f s (target <= %.0f s)"
               % (statistics.median(times), min(times), max(times), REFERENCE_TARGET_S))
-
-
-def student_packages() -> List[str]:
-    from course_format import course_file
-    MILESTONES = course_file.load(course_file.builtin_course_dir()).milestones
-    return sorted({p for m in MILESTONES for p in m.packages})
 
 
 def make_class(scratch: Path, size: int) -> Path:

@@ -42,6 +42,7 @@ from pathlib import Path
 from typing import Dict, List, NamedTuple, Optional, Tuple
 
 from course_grader import workspace
+from course_testkit.benchmarks import student_packages  # the same packages the class bench hands in
 
 ROOT = Path(__file__).resolve().parents[1]
 STUDENT = "student"
@@ -84,8 +85,6 @@ def scratch(prefix: str) -> Path:
 
 def submission(folder: Path) -> Path:
     """The reference's exercise packages as one student's submission."""
-    sys.path.insert(0, str(ROOT / "bench"))
-    from grade_bench import student_packages  # the same packages the class bench hands in
     sub = folder / STUDENT
     for pkg in student_packages():
         shutil.copytree(ROOT / "courses" / "robotics_labs" / "solution" / pkg, sub / pkg, symlinks=True)

@@ -19,7 +19,7 @@ through four states:
 After each change the containers settle (2 s windows of CPU until two in a row agree within 1
 point of a core or 15 %, 10-90 s), then one window of --steady-window seconds (30): CPU from the
 container's cgroup counter (the delta over the window: not averaged since the start as `podman
-stats` does), memory as the cgroup's use less its file pages (bench/hub_cost.py), and both split
+stats` does), memory as the cgroup's use less its file pages (course_testkit.hub_cost), and both split
 by process (JupyterLab, master, rosout, turtlesim, lab view, Xvnc, the student's own commands, ...:
 /proc/PID/stat and RssAnon), and the hub's own processes' CPU (JupyterHub, the proxy, podman's
 API). The load average is printed with each window.
@@ -83,7 +83,7 @@ from course_testkit.browser import chromium
 from course_testkit.hub import HubUser, LocalHub
 from course_testkit.jupyter import JupyterError
 
-from hub_cost import MIB, Cgroup, Meter, Window, container_pid, loadavg, tree_cpu_s, settle, windows
+from course_testkit.hub_cost import MIB, Cgroup, Meter, Window, container_pid, loadavg, tree_cpu_s, settle, windows
 
 PODMAN = ["podman", "--runtime", "runc", "--cgroup-manager=cgroupfs"]
 MIN_RATE_HZ = 60.0

@@ -13,10 +13,8 @@ import socket
 import statistics
 import sys
 import time
-from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rosenv import private_master  # noqa: E402
+from course_testkit.benchmarks import private_master
 
 LIMIT_S = 5.0
 

@@ -25,16 +25,13 @@ import statistics
 import subprocess
 import sys
 import time
-from pathlib import Path
 from typing import Callable, Dict, List, NamedTuple
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rosenv import private_master  # noqa: E402
-from student_cost import rss_anon_kib  # noqa: E402
+from course_testkit.benchmarks import private_master, rss_anon_kib
 
-from course_checks.waiting import wait_for  # noqa: E402
-from course_sandbox.env_paths import drop_entries  # noqa: E402
-from course_testkit.master import PrivateMaster, system_state  # noqa: E402
+from course_checks.waiting import wait_for
+from course_sandbox.env_paths import drop_entries
+from course_testkit.master import PrivateMaster, system_state
 
 PYTHON = "/usr/bin/python3"
 STARTUP_FOLDER = os.path.join("lib", "course_env", "python_startup")

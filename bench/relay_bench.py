@@ -13,12 +13,10 @@ import argparse
 import sys
 import threading
 import time
-from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rosenv import private_master  # noqa: E402
+from course_testkit.benchmarks import private_master
 
-from course_checks.nodes import NodeProcess  # noqa: E402
+from course_checks.nodes import NodeProcess
 
 RELAYS = [("ours", "course_relay", "relay"), ("topic_tools", "topic_tools", "relay")]
 

@@ -12,12 +12,10 @@ import xmlrpc.client
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rosenv import cpu_seconds, private_master  # noqa: E402
+from course_testkit.benchmarks import cpu_seconds, private_master
 
 
 def engine_rtf(urdf: Path, lidar_body: str = "", seconds: float = 20.0) -> float:
-    sys.path.insert(0, str(ROOT / "src" / "mujoco_gazebo" / "src"))
     from mujoco_gazebo.engine import database
     from mujoco_gazebo.engine.frames import Pose
     from mujoco_gazebo.engine.lidar import Lidar, ScanConfig
@@ -42,7 +40,6 @@ def engine_rtf(urdf: Path, lidar_body: str = "", seconds: float = 20.0) -> float
 
 def camera_render_ms(urdf: Path, frames: int = 30) -> str:
     """Median time to render one RRBot camera frame (default 320x240), or why it cannot."""
-    sys.path.insert(0, str(ROOT / "src" / "mujoco_gazebo" / "src"))
     from mujoco_gazebo.engine import database
     from mujoco_gazebo.engine.camera import BodyCamera, CameraConfig, RenderUnavailable
     from mujoco_gazebo.engine.frames import Pose

@@ -17,17 +17,12 @@ import argparse
 import re
 import shutil
 import statistics
-import sys
 import tempfile
 import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "src" / "course_grader" / "src"))
-sys.path.insert(0, str(ROOT / "src" / "course_milestones" / "src"))
-sys.path.insert(0, str(ROOT / "src" / "course_format" / "src"))
-
-from course_grader import similarity, submissions  # noqa: E402
+from course_grader import similarity, submissions
 
 SOLUTIONS = ROOT / "courses" / "robotics_labs" / "solution"
 # Names a student chooses: a function, a variable, a class (not ROS's API, which all share).

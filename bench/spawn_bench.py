@@ -7,10 +7,8 @@ stay flat (before the fix: RSS 68 -> 296 MB and a delete round 13 -> 48 s over 1
 import sys
 import time
 import xmlrpc.client
-from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rosenv import private_master  # noqa: E402
+from course_testkit.benchmarks import private_master
 
 
 def rss_mb(pid: int) -> float:

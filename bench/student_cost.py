@@ -31,6 +31,7 @@ from typing import Dict, List, Optional, Tuple
 from course_checks.isolation import free_port
 from course_checks.waiting import wait_for
 from course_sandbox import procs
+from course_testkit.benchmarks import rss_anon_kib
 from course_testkit.browser import chromium
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -71,14 +72,6 @@ def cpu_seconds(pid: int) -> float:
     if use is None:
         raise ProcessLookupError(pid)
     return use.cpu_seconds
-
-
-def rss_anon_kib(pid: int) -> int:
-    with open("/proc/%d/status" % pid) as f:
-        for line in f:
-            if line.startswith("RssAnon:"):
-                return int(line.split()[1])
-    return 0
 
 
 def label(pid: int) -> str:

@@ -36,8 +36,7 @@ import sys
 import time
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rosenv import cpu_seconds, private_master  # noqa: E402
+from course_testkit.benchmarks import cpu_seconds, private_master
 
 UPSTREAM_DEFAULT = "/tmp/upstream_ws/devel/lib/turtlesim/turtlesim_node"
 LOAD_COUNTS = (1, 20, 50)

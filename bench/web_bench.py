@@ -23,17 +23,14 @@ import asyncio
 import json
 import statistics
 import threading
-import sys
 import time
-from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rosenv import cpu_seconds, private_master  # noqa: E402
+from course_testkit.benchmarks import cpu_seconds, private_master
 
-from course_testkit.browser import chromium  # noqa: E402
-from course_checks.isolation import free_port  # noqa: E402
-from course_checks.nodes import find_executable  # noqa: E402
-from course_checks.waiting import wait_for  # noqa: E402
+from course_testkit.browser import chromium
+from course_checks.isolation import free_port
+from course_checks.nodes import find_executable
+from course_checks.waiting import wait_for
 
 TARGET_FPS = 20.0
 TARGET_P50_MS = 100.0

@@ -204,9 +204,9 @@ def _make_arguments(words: List[str], index: int, targets: List[str]) -> int:
 
 def repo_path_words(text: str, top_dirs: Iterable[str]) -> List[str]:
     """The words of a code span (or a shell line) that name a path in the repository: those that
-    start with one of top_dirs and a `/`; a trailing `:line[:col]` and punctuation dropped.
-    Placeholders, patterns and the arguments of a call (`add_executable(x src/x.cpp)`) are not
-    repository paths."""
+    start with one of top_dirs and a `/`; a trailing `:line[:col]`, a pytest node id's `::test`
+    and punctuation dropped. Placeholders, patterns and the arguments of a call
+    (`add_executable(x src/x.cpp)`) are not repository paths."""
     if CALL.match(text):
         return []
     tops = set(top_dirs)
@@ -214,7 +214,7 @@ def repo_path_words(text: str, top_dirs: Iterable[str]) -> List[str]:
     for word in re.split(r"[\s\"'=,;|&()]+", text):
         if PLACEHOLDER.search(word):
             continue
-        word = re.sub(r"(:\d+){1,2}$", "", word.strip(".:"))
+        word = re.sub(r"(:\d+){1,2}$", "", word.split("::", 1)[0].strip(".:"))
         if "/" not in word:
             continue
         if word.split("/", 1)[0] in tops:
@@ -233,7 +233,7 @@ def package_references(text: str, packages: Iterable[str], python_packages: Iter
     for word in re.split(r"[\s\"'=,;|&()]+", text):
         if PLACEHOLDER.search(word):
             continue
-        word = re.sub(r"(:\d+){1,2}$", "", word.strip(".:"))
+        word = re.sub(r"(:\d+){1,2}$", "", word.split("::", 1)[0].strip(".:"))
         slash = re.match(r"^([A-Za-z][\w-]*)/(.+)$", word)
         if slash and slash.group(1) in packages and FILE_EXTENSION.search(slash.group(2).rstrip("/")):
             pkg, rest = slash.groups()
@@ -418,6 +418,7 @@ def test_make_targets_named(command, targets):
     ("src/course_grader/src/course_grader/cli.py", ["src/course_grader/src/course_grader/cli.py"]),
     ("python3 tools/flake_hunt.py 2 src/course_relay", ["tools/flake_hunt.py", "src/course_relay"]),
     ("src/turtlesim/node.py:12:3,", ["src/turtlesim/node.py"]),
+    ("tests/e2e/test_image.py::test_the_course_images", ["tests/e2e/test_image.py"]),
     ("src/<pkg>/test/unit/", []),
     ("src/X/", []),
     ("courses/robotics_labs/samples/attack_*", []),

@@ -26,8 +26,8 @@ CATKIN_LINT = os.path.join(ROOT, ".venv", "bin", "catkin_lint")
 # Python modules that are not catkin packages of the same name -> their rosdep key.
 ROSDEP_KEYS = {
     "numpy": "python3-numpy",
-    "mujoco": "python3-mujoco",  # PyPI only: tools/rosdep.yaml maps the key to pip
-    "copydetect": "python3-copydetect",  # PyPI only: tools/rosdep.yaml maps the key to pip
+    "mujoco": "python3-mujoco",  # PyPI only: setup/rosdep.yaml maps the key to pip
+    "copydetect": "python3-copydetect",  # PyPI only: setup/rosdep.yaml maps the key to pip
     "PyQt5": "python3-pyqt5",
     "yaml": "python3-yaml",
     "matplotlib": "python3-matplotlib",
@@ -40,11 +40,11 @@ ROSDEP_KEYS = {
     "PIL": "python3-pil",
     "bcrypt": "python3-bcrypt",
     # the hub's own venv (.venv-hub): course_hub.auth and course_hub.spawner are imported by JupyterHub there
-    "firstuseauthenticator": "python3-jupyterhub-firstuseauthenticator",  # PyPI: tools/rosdep.yaml
-    "dockerspawner": "python3-dockerspawner",  # PyPI: tools/rosdep.yaml
+    "firstuseauthenticator": "python3-jupyterhub-firstuseauthenticator",  # PyPI: setup/rosdep.yaml
+    "dockerspawner": "python3-dockerspawner",  # PyPI: setup/rosdep.yaml
     "traitlets": "python3-traitlets",
     # the students' JupyterLab venv (.venv-jupyter): course_workbench/venv/singleuser.py runs there
-    "jupyterhub": "python3-jupyterhub",  # PyPI: tools/rosdep.yaml
+    "jupyterhub": "python3-jupyterhub",  # PyPI: setup/rosdep.yaml
 }
 # ROS packages whose Python module has the package's name (Debian's ROS, or ours).
 ROS_MODULES = {"rospy", "rosgraph", "roslib", "roslaunch", "rostest", "rosnode", "rosservice",

@@ -22,7 +22,7 @@ def _user_exists() -> bool:
         return False
 
 
-@pytest.mark.skipif(not _user_exists(), reason="tools/deps.sh creates the sandbox user")
+@pytest.mark.skipif(not _user_exists(), reason="setup/install.sh creates the sandbox user")
 def test_the_sweep_ends_one_gradings_processes_only():
     mine, theirs = grading_gid(os.getpid()), grading_gid(os.getpid() + 1)
 

@@ -1,4 +1,4 @@
-"""tools/deps.sh (make deps, make build) prints one line per set-up step with its time, apt's and
+"""setup/install.sh (make deps, make build) prints one line per set-up step with its time, apt's and
 pip's output going to the log the line names; a failing step prints its log's last lines and exits
 non-zero. Run on a copy of the script in a temporary checkout, apt-get, dpkg-query, sudo and useradd
 replaced by stand-ins on PATH: nothing is installed, nothing is fetched."""
@@ -23,11 +23,11 @@ STAND_INS = {
 
 
 def checkout(tmp_path: Path) -> Path:
-    """A checkout holding tools/deps.sh, one Debian package to install and a course venv up to date."""
+    """A checkout holding setup/install.sh, one Debian package to install and a course venv up to date."""
     root = tmp_path / "course"
-    (root / "tools").mkdir(parents=True)
-    shutil.copy(ROOT / "tools" / "deps.sh", root / "tools" / "deps.sh")
-    (root / "tools" / "apt-packages.txt").write_text("# one package\nros-core-dev\n")
+    (root / "setup").mkdir(parents=True)
+    shutil.copy(ROOT / "setup" / "install.sh", root / "setup" / "install.sh")
+    (root / "setup" / "apt-packages.txt").write_text("# one package\nros-core-dev\n")
     requirements = root / "requirements.txt"
     requirements.write_text("roslibpy==2.1.0\n")
     python = root / ".venv" / "bin" / "python3"
@@ -46,7 +46,7 @@ def checkout(tmp_path: Path) -> Path:
 def deps(root: Path, **env: str) -> subprocess.CompletedProcess:
     environ = dict(os.environ, PATH="%s:%s" % (root.parent / "bin", os.environ["PATH"]), COURSE_JUPYTER="0",
                    COURSE_HUB="0", **env)
-    return subprocess.run(["bash", str(root / "tools" / "deps.sh")], env=environ, stdin=subprocess.DEVNULL,
+    return subprocess.run(["bash", str(root / "setup" / "install.sh")], env=environ, stdin=subprocess.DEVNULL,
                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=60, check=False)
 
 

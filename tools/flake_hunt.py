@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """`make flake-hunt K=10`: run the whole suite K times in a row and report failures per test.
 
-Usage: python3 tools/flake_hunt.py [--until-fail] [--out DIR] [--all] K [pytest args...]
+Usage: python3 tools/flake_hunt.py [--until-fail] [--out DIR] [--all] K [pytest args...]   (a sourced workspace)
 
 Each run is `python3 -m pytest` from the repository root in the sourced workspace (as `make
 test` runs it), with its JUnit XML and its output kept in DIR (default output/flake-hunt/<time>/).
@@ -18,13 +18,10 @@ import time
 from pathlib import Path
 from typing import List, Sequence
 
+from course_testkit import flakes
+
 ROOT = Path(__file__).resolve().parents[1]
 SETUP = ROOT / "catkin_ws" / "devel" / "setup.bash"
-try:
-    from course_testkit import flakes
-except ImportError:  # not sourced: the module is plain Python
-    sys.path.insert(0, str(ROOT / "src" / "course_testkit" / "src"))
-    from course_testkit import flakes
 
 # Source the workspace (never under set -u), then pytest from the root, as `make test` does.
 PYTEST_IN_WORKSPACE = 'source "$1" && cd "$2" && exec python3 -m pytest "${@:3}"'

@@ -36,7 +36,7 @@ def write(out: str, verdicts: Sequence[Verdict], order: Sequence[Milestone], iso
     if len(students) > 1:
         try:
             pairs = similarity.find({s: unpacked(out, s) for s in students}, boilerplate)
-        except ImportError as err:  # the venv without copydetect (tools/deps.sh installs it)
+        except ImportError as err:  # the venv without copydetect (setup/install.sh installs it)
             say("similarity: not computed (%s)" % err)
     similarity.write_csv(os.path.join(out, similarity.CSV_NAME), pairs)
     report.write(os.path.join(out, REPORT), verdicts, order, isolation, pairs)

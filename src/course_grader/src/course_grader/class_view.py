@@ -90,7 +90,7 @@ def write_csvs(out: str, verdicts: Sequence[Verdict], order: Sequence[Milestone]
 
 def load_plotting() -> Optional[ModuleType]:
     """pyplot on matplotlib's Agg backend (with the backend savefig() loads), or None when
-    matplotlib is missing (Debian's python3-matplotlib: tools/apt-packages.txt). The first call
+    matplotlib is missing (Debian's python3-matplotlib: setup/apt-packages.txt). The first call
     imports them, 0.7 CPU s: the grader makes it on a thread of its own while the runs go on, so
     that histogram() does not spend it after the last verdict."""
     try:

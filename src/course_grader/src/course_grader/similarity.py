@@ -200,7 +200,7 @@ def similar_pairs(students: Dict[str, str], boilerplate: Sequence[str] = (), thr
 
 def find(students: Dict[str, str], boilerplate: Sequence[str] = (), threshold: float = THRESHOLD) -> List[Pair]:
     """similar_pairs, in this Python when it has copydetect, else in the first python3 on PATH: the
-    course venv's, where tools/deps.sh installs copydetect (course_env puts it first; the grader
+    course venv's, where setup/install.sh installs copydetect (course_env puts it first; the grader
     itself runs as catkin's relay, with Debian's /usr/bin/python3). ImportError when neither has it."""
     try:
         import copydetect  # noqa: F401
@@ -209,7 +209,7 @@ def find(students: Dict[str, str], boilerplate: Sequence[str] = (), threshold: f
         pass
     python = shutil.which("python3")
     if not python or os.path.abspath(python) == os.path.abspath(sys.executable):  # a venv's is a link: not realpath
-        raise ImportError("copydetect is not installed (tools/deps.sh installs it into the course venv)")
+        raise ImportError("copydetect is not installed (setup/install.sh installs it into the course venv)")
     asked = json.dumps({"students": students, "boilerplate": list(boilerplate), "threshold": threshold})
     done = subprocess.run([python, "-m", "course_grader.similarity"], input=asked, stdout=subprocess.PIPE,
                           stderr=subprocess.PIPE, text=True, check=False)

@@ -14,7 +14,7 @@ In this order, each step explicit and none a side effect of loading JupyterHub's
    that answers, the hub uses it; otherwise this starts podman's Docker-compatible service on a
    socket of the hub's own (`podman --runtime runc --cgroup-manager=cgroupfs --network-backend
    netavark system service --time=0 unix://SOCK`: the runtime and cgroup manager podman needs on
-   this kind of machine, tools/podman_check.py, and the network stack whose internal networks
+   this kind of machine, course_testkit.podman, and the network stack whose internal networks
    have a gateway) and stops it when the hub stops.
 3. **The API port closed** to all but loopback and the containers' bridges while the hub runs
    (course_hub.firewall).

@@ -32,7 +32,7 @@ AUTH_TRAITS = ["class_list", "data_dir", "allowed_users", "admin_users", "dbm_pa
                "allow_existing_users", "failures_per_name"]
 
 pytestmark = pytest.mark.skipif(not os.access(HUB_PYTHON, os.X_OK), reason="the hub's venv (.venv-hub) is not "
-                                "there: make hub's set-up makes it (COURSE_HUB=1 bash tools/deps.sh)")
+                                "there: make hub's set-up makes it (COURSE_HUB=1 bash setup/install.sh)")
 
 
 class Probe:

@@ -1,7 +1,8 @@
 """A free TCP port, the kernel's pick: for a server a test or tool starts and must name the port of.
 
-No ROS in here, and nothing but the standard library: tools/podman_check.py, which runs with
-Debian's /usr/bin/python3 possibly without ROS sourced, imports it by path.
+No ROS in here, and nothing but the standard library: the podman suites (tests/e2e/test_image.py),
+which run with Debian's /usr/bin/python3 possibly without ROS sourced, import it from its source
+folder (the Makefile's PYTHONPATH).
 """
 from __future__ import annotations
 

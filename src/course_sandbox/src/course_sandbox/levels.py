@@ -97,7 +97,7 @@ def detect(user: str, environ: Optional[Dict[str, str]] = None) -> str:
     environ = os.environ if environ is None else environ
     root = os.geteuid() == 0
     if root and not user_exists(user):
-        raise Unavailable("the sandbox user %r does not exist: run `make deps` (tools/deps.sh creates it) "
+        raise Unavailable("the sandbox user %r does not exist: run `make deps` (setup/install.sh creates it) "
                           "before grading as root" % user)
     if namespaces_work(root, user):
         level = FULL if root else NAMESPACES

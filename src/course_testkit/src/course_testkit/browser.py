@@ -20,9 +20,9 @@ ARGUMENTS = ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-s
 
 
 def require_browser() -> None:
-    pytest.importorskip("selenium.webdriver", reason="python3-selenium is not installed (tools/apt-packages.txt)")
+    pytest.importorskip("selenium.webdriver", reason="python3-selenium is not installed (setup/apt-packages.txt)")
     if shutil.which("chromium") is None or shutil.which("chromedriver") is None:
-        pytest.skip("Debian's chromium and chromium-driver are not installed (tools/apt-packages.txt)",
+        pytest.skip("Debian's chromium and chromium-driver are not installed (setup/apt-packages.txt)",
                     allow_module_level=True)
 
 

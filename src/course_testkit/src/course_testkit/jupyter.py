@@ -9,8 +9,8 @@ a user's login cookies. `terminal()` is one of its terminals (`POST /api/termina
 ["stdin", text] in and ["stdout", text] out): `run(command)` types a command line and returns its
 exit status and what it printed.
 
-Needs tornado alone (Debian's python3-tornado), no ROS: tools/podman_check.py uses it with Debian's
-python3 outside the workspace.
+Needs tornado alone (Debian's python3-tornado), no ROS: the podman suites (tests/e2e/test_image.py)
+use it with Debian's python3 outside the workspace.
 """
 from __future__ import annotations
 

@@ -1,7 +1,7 @@
 """Drive turtlesim through a rosbridge v2 websocket, as the lab page's teleop panel does, and count
 the canvas frames it receives, as the page's canvas panel subscribes to them (the page's own
 server, or the page behind a proxy). Needs tornado alone (Debian's python3-tornado),
-no rospy: tools/podman_check.py runs it with Debian's python3 outside the workspace."""
+no rospy: the podman suites (tests/e2e/test_image.py) run it with Debian's python3 outside the workspace."""
 from __future__ import annotations
 
 import asyncio

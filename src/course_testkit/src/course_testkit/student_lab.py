@@ -1,7 +1,7 @@
 """A student's first lab (002 section 2, the chatter package) done through a JupyterLab workbench
 as a student does it: `catkin_create_pkg` and `catkin_make` typed in a terminal, the talker and
 the listener written through the contents API (the editor's save). The workbench's tests on the
-host and `make docker-check` in the image (tools/podman_check.py) take the same steps.
+host and `make docker-check` in the image (course_testkit.course_image) take the same steps.
 
 Needs course_testkit.jupyter alone (tornado, no ROS).
 """

@@ -33,7 +33,7 @@ from turtlesim.constants import DEFAULT_BACKGROUND_RGB
 require_browser()
 for _tool, _package in (("vncserver", "tigervnc-standalone-server"), ("jwm", "jwm"), ("xwininfo", "x11-utils")):
     if shutil.which(_tool) is None:
-        pytest.skip("%s is not installed (Debian's %s, tools/apt-packages.txt)" % (_tool, _package),
+        pytest.skip("%s is not installed (Debian's %s, setup/apt-packages.txt)" % (_tool, _package),
                     allow_module_level=True)
 
 LAUNCHER_TITLE = "Desktop"  # jupyter-remote-desktop-proxy's launcher entry

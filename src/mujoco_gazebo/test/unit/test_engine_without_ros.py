@@ -1,5 +1,6 @@
 """The engine layer runs without ROS: every module under mujoco_gazebo/engine imports in a
 Python where rospy, genpy and every *_msgs/*_srvs package are unimportable."""
+import os
 import pkgutil
 import subprocess
 import sys
@@ -21,13 +22,19 @@ class NoRos(importlib.abc.MetaPathFinder):
         return None
 
 sys.meta_path.insert(0, NoRos())
-sys.path.insert(0, sys.argv[1])
-for module in sys.argv[2:]:
+for module in sys.argv[1:]:
     importlib.import_module(module)
 leaked = sorted(m for m in sys.modules if m.split(".")[0] in ("rospy", "genpy", "roslib"))
 assert not leaked, leaked
-print("ok", len(sys.argv) - 2)
+print("ok", len(sys.argv) - 1)
 """
+
+
+def probe(*modules: str) -> subprocess.CompletedProcess:
+    """PROBE importing `modules` in a fresh Python, the folder holding mujoco_gazebo first on its path."""
+    path = os.pathsep.join([str(PACKAGE_ROOT)] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p])
+    return subprocess.run([sys.executable, "-c", PROBE, *modules], env=dict(os.environ, PYTHONPATH=path),
+                          capture_output=True, text=True)
 
 
 def engine_modules():
@@ -35,13 +42,13 @@ def engine_modules():
 
 
 def test_the_probe_refuses_rospy():
-    out = subprocess.run([sys.executable, "-c", PROBE, str(PACKAGE_ROOT), "rospy"], capture_output=True, text=True)
+    out = probe("rospy")
     assert out.returncode != 0 and "ROS module rospy" in out.stderr
 
 
 def test_every_engine_module_imports_without_ros():
     modules = engine_modules()
     assert {"mujoco_gazebo.engine.world", "mujoco_gazebo.engine.odometry", "mujoco_gazebo.engine.imu"} <= set(modules)
-    out = subprocess.run([sys.executable, "-c", PROBE, str(PACKAGE_ROOT), *modules], capture_output=True, text=True)
+    out = probe(*modules)
     assert out.returncode == 0, out.stderr
     assert out.stdout.split() == ["ok", str(len(modules))]

@@ -1,18 +1,15 @@
-"""tools/podman_check.py without podman: the containers.conf it needs, Gradescope's results.json
-format and the expected verdicts it checks, and the zip unpacked with its modes as unzip does.
-(`make docker-check` and `make autograder-check` run the real thing, as root, in minutes.)"""
+"""course_testkit.podman and course_testkit.course_image without podman: the containers.conf it
+needs, Gradescope's results.json format and the expected verdicts it checks, and the zip unpacked
+with its modes as unzip does. (`make docker-check` and `make autograder-check`, tests/e2e/test_image.py,
+run the real thing, as root, in minutes.)"""
 import importlib.util
 import zipfile
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-spec = importlib.util.spec_from_file_location("podman_check", ROOT / "tools" / "podman_check.py")
-podman_check = importlib.util.module_from_spec(spec)
-spec.loader.exec_module(podman_check)
+from course_testkit import course_image, podman
 
 
 def test_containers_conf_gets_no_default_ulimits_once():
-    fix = podman_check.without_default_ulimits
+    fix = podman.without_default_ulimits
     assert fix("") == "[containers]\ndefault_ulimits = []\n"
     assert fix("[engine]\nx = 1") == "[engine]\nx = 1\n[containers]\ndefault_ulimits = []\n"
     assert fix("[containers]\nlog_size_max = -1\n\n[engine]\n") == \
@@ -28,7 +25,7 @@ def results(status="passed", output="isolation: user only: ..."):
 
 
 def test_results_json_is_checked_for_format_verdict_and_isolation():
-    problems = podman_check.results_problems
+    problems = course_image.results_problems
     assert problems(results(), True) == []
     assert problems(results("failed"), False) == []
     assert any("expected failed" in p for p in problems(results(), False))
@@ -48,7 +45,7 @@ def test_the_zip_is_unpacked_with_its_modes(tmp_path):
         info.external_attr = 0o100755 << 16
         zf.writestr(info, "#!/bin/bash\n")
         zf.writestr("src/readme.txt", "x")
-    podman_check.unpack_zip(archive, tmp_path / "source")
+    course_image.unpack_zip(archive, tmp_path / "source")
     assert (tmp_path / "source" / "setup.sh").stat().st_mode & 0o777 == 0o755
     assert (tmp_path / "source" / "src" / "readme.txt").read_text() == "x"
 
@@ -56,15 +53,16 @@ def test_the_zip_is_unpacked_with_its_modes(tmp_path):
 def test_the_image_tags_come_from_the_environment(monkeypatch):
     monkeypatch.setenv("COURSE_IMAGE", "localhost/ros-course-mine")
     monkeypatch.setenv("INSTRUCTOR_IMAGE", "localhost/ros-course-mine-instructor")
+    spec = importlib.util.find_spec("course_testkit.podman")
     again = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(again)
     assert (again.COURSE_IMAGE, again.INSTRUCTOR_IMAGE) == ("localhost/ros-course-mine",
                                                             "localhost/ros-course-mine-instructor")
-    assert podman_check.COURSE_IMAGE == "localhost/ros-course"  # the default, without them
+    assert podman.COURSE_IMAGE == "localhost/ros-course"  # the default, without them
 
 
 def test_each_check_prints_one_line_and_any_failure_fails_them_all(capsys):
-    check = podman_check.Checks("jupyter")
+    check = course_image.Checks("jupyter")
     assert check(True, "a") and check.ok
     assert not check(False, "b") and not check.ok
     assert check(True, "c") and not check.ok
@@ -74,5 +72,5 @@ def test_each_check_prints_one_line_and_any_failure_fails_them_all(capsys):
 
 def test_container_names_are_this_runs_own():
     import os
-    name = podman_check.container_name("jupyter-check")
+    name = podman.container_name("jupyter-check")
     assert name == "ros-course-jupyter-check-%d" % os.getpid()

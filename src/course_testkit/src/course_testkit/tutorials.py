@@ -1,24 +1,22 @@
-#!/usr/bin/env python3
-"""`make tutorials-check TUTORIALS=DIR`: ROS 1's own tutorials as an overlay on the course workspace.
+"""ROS 1's own tutorials as an overlay on the course workspace: the steps of their end-to-end suite
+(tests/e2e/test_tutorials.py, `make tutorials-check TUTORIALS=DIR`; docs/noetic_cxx.md).
 
-DIR holds three source trees, fetched by whoever runs this (they are never committed here):
+DIR holds three source trees, fetched by whoever runs it (they are never committed here):
 ros_tutorials and common_tutorials (branch noetic-devel) and geometry_tutorials (its Noetic
-branch, kinetic-devel). The check:
+branch, kinetic-devel). The suite:
 
 1. copies them into a fresh overlay workspace, leaving out upstream's C++ turtlesim (ours must
    be the one the demos drive), and builds it the way the grader builds a student's packages:
    `source <course>/catkin_ws/devel/setup.bash && catkin_make` (with -k, so that every package
-   that fails is named, with course_grader's one-line reason);
+   that fails is named, with the reason the caller's `explain` gives: course_grader's one line);
 2. runs what they have of tests, `catkin_make run_tests`, and reads catkin_test_results'
    summary (rostest exits 0 even when a test fails, so its exit code says nothing);
 3. runs turtle_tf2's demo, Python (turtle_tf2_demo.launch) and C++ (turtle_tf2_demo_cpp.launch),
    against our turtlesim on a private master: once turtle2 has caught up from where the listener
-   spawned it, turtle1 drives an arc, stops, and /turtle2/pose must come back to /turtle1/pose.
-   The distance over time is printed.
+   spawned it, turtle1 drives an arc, stops, and /turtle2/pose must come back to /turtle1/pose
+   (the probe, a node of the demo's master, is the caller's: tests/e2e/tutorials_probe.py).
 
-Everything it starts carries one run token and is gone when it ends (course_testkit). It prints
-one line per step with its figures and exits 0 only when every step passed. Kept out of
-`make test`: the sources are not in the repository, and a run takes a few minutes.
+Everything it starts carries one run token and is gone when it ends.
 """
 from __future__ import annotations
 
@@ -29,14 +27,12 @@ import os
 import re
 import shutil
 import subprocess
-import sys
-import tempfile
 import time
 import xml.etree.ElementTree as ET
 from pathlib import Path
-from typing import Dict, List, NamedTuple, Optional, Sequence
+from typing import Callable, Dict, List, NamedTuple, Sequence
 
-ROOT = Path(__file__).resolve().parents[1]
+CHECKOUT = Path(__file__).resolve().parents[4]  # <checkout>/src/course_testkit/src/course_testkit/tutorials.py
 TREES = ("ros_tutorials", "geometry_tutorials", "common_tutorials")
 LEFT_OUT = {"ros_tutorials/turtlesim": "upstream's C++ turtlesim: the demos must drive ours"}
 BUILD_TIMEOUT_S = 1800.0
@@ -80,7 +76,9 @@ def copy_sources(tutorials: Path, src: Path) -> List[str]:
     return ["%s (%s)" % item for item in LEFT_OUT.items()]
 
 
-def build(ws: Path, course_setup: Path) -> Build:
+def build(ws: Path, course_setup: Path, explain: Callable[[str, str], str]) -> Build:
+    """catkin_make -k of the overlay `ws` on the course's `course_setup`; a failed build's reason is
+    `explain(build log, ws)`."""
     start = time.monotonic()
     command = ("source %s && catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -k"
                % subprocess.list2cmdline([str(course_setup)]))
@@ -91,8 +89,7 @@ def build(ws: Path, course_setup: Path) -> Build:
     failed = sorted(set(re.findall(r"^make\[\d+\]: \*\*\* \[(\S+?)/CMakeFiles/", log, re.MULTILINE)))
     reason = ""
     if code != 0:
-        from course_grader.build_errors import summarise
-        reason = summarise(log, str(ws))
+        reason = explain(log, str(ws))
     return Build(code == 0, packages, failed, reason, time.monotonic() - start)
 
 
@@ -143,53 +140,6 @@ def run_tests(ws: Path, env: Dict[str, str]) -> Tests:
 
 # --- 3. turtle_tf2's demo against our turtlesim ----------------------------------------------
 
-def probe() -> int:
-    """Run as a node of the demo's master: the follow figures as JSON on stdout."""
-    import rospy
-    from geometry_msgs.msg import Twist
-    from turtlesim.msg import Pose
-
-    from course_checks.waiting import wait_for
-
-    rospy.init_node("tutorials_check_probe", disable_signals=True)
-    poses: Dict[str, Pose] = {}
-    for name in ("turtle1", "turtle2"):
-        rospy.Subscriber("/%s/pose" % name, Pose, lambda msg, n=name: poses.__setitem__(n, msg))
-    drive = rospy.Publisher("/turtle1/cmd_vel", Twist, queue_size=1)
-    if not wait_for(lambda: len(poses) == 2 and drive.get_num_connections(), START_TIMEOUT_S, 0.1):
-        print(json.dumps({"error": "no pose from %s" % " and ".join(sorted({"turtle1", "turtle2"} - set(poses)))
-                          or "turtlesim does not subscribe /turtle1/cmd_vel"}))
-        return 1
-    samples = []
-    t0 = time.monotonic()
-
-    def distance() -> float:
-        return math.hypot(poses["turtle1"].x - poses["turtle2"].x, poses["turtle1"].y - poses["turtle2"].y)
-
-    def sample(phase: str) -> None:
-        one, two = poses["turtle1"], poses["turtle2"]
-        samples.append([phase, round(time.monotonic() - t0, 2), round(one.x, 3), round(one.y, 3),
-                        round(two.x, 3), round(two.y, 3), round(distance(), 3)])
-
-    def record(phase: str, seconds: float, until=lambda: False, action=lambda: None) -> None:
-        end = time.monotonic() + seconds
-        while time.monotonic() < end and not until():
-            action()
-            sample(phase)
-            wait_for(lambda: time.monotonic() >= samples[-1][1] + t0 + SAMPLE_S, SAMPLE_S + 1, 0.02)
-
-    record("catch-up", START_TIMEOUT_S, until=lambda: distance() < CAUGHT_UP_M)
-    arc = Twist()
-    arc.linear.x, arc.angular.z = 2.0, 1.0
-    record("drive", DRIVE_S, action=lambda: drive.publish(arc))
-    drive.publish(Twist())
-    record("follow", FOLLOW_S)
-    sample("end")
-    print(json.dumps({"samples": samples}))
-    rospy.signal_shutdown("measured")
-    return 0
-
-
 class Demo(NamedTuple):
     flavour: str
     launch: str
@@ -199,7 +149,9 @@ class Demo(NamedTuple):
     seconds: float
 
 
-def demo(flavour: str, launch: str, env: Dict[str, str]) -> Demo:
+def demo(flavour: str, launch: str, env: Dict[str, str], probe: Sequence[str]) -> Demo:
+    """turtle_tf2's `launch` against our turtlesim on a private master, measured by the `probe`
+    command (a node printing the samples as JSON: tests/e2e/tutorials_probe.py)."""
     from course_testkit.master import PrivateMaster, system_state
     from course_checks.nodes import NodeProcess
     from course_checks.waiting import wait_for
@@ -218,7 +170,7 @@ def demo(flavour: str, launch: str, env: Dict[str, str]) -> Demo:
         if not ours_up() or not roslaunch.running():
             return Demo(flavour, launch, False, "our turtlesim (its ~snapshot service) did not come up:\n"
                         + roslaunch.output()[-2000:], [], time.monotonic() - start)
-        measured = subprocess.run([sys.executable, str(Path(__file__).resolve()), "--probe"], env=master.env,
+        measured = subprocess.run(list(probe), env=master.env,
                                   stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True,
                                   timeout=START_TIMEOUT_S + DRIVE_S + FOLLOW_S + 60)
         log = roslaunch.output()
@@ -264,73 +216,25 @@ def follow_table(samples: List[list]) -> List[str]:
 
 # --- the whole check --------------------------------------------------------------------------
 
-def parse_args(argv: Sequence[str]) -> argparse.Namespace:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("tutorials", type=Path, help="the folder holding %s" % ", ".join(TREES))
-    parser.add_argument("--course", type=Path, default=ROOT / "catkin_ws" / "devel" / "setup.bash",
+def options(tutorials: str, args: Sequence[str]) -> argparse.Namespace:
+    """The suite's options: the folder holding TREES, and TUTORIALS_CHECK_ARGS' words."""
+    parser = argparse.ArgumentParser(prog="make tutorials-check TUTORIALS=DIR TUTORIALS_CHECK_ARGS=",
+                                     description=__doc__.split("\n\n")[0])
+    parser.add_argument("--course", type=Path, default=CHECKOUT / "catkin_ws" / "devel" / "setup.bash",
                         help="the course workspace's setup.bash (default: this checkout's devel space)")
     parser.add_argument("--work", type=Path, help="the overlay workspace (default: a temporary folder)")
     parser.add_argument("--keep", action="store_true", help="keep the overlay workspace")
     parser.add_argument("--skip-tests", action="store_true")
     parser.add_argument("--skip-demo", action="store_true")
-    return parser.parse_args(argv)
+    opts = parser.parse_args(list(args))
+    opts.tutorials = Path(tutorials)
+    return opts
 
 
-def main(argv: Sequence[str]) -> int:
-    if list(argv) == ["--probe"]:
-        return probe()
-    args = parse_args(argv)
-    missing = [t for t in TREES if not (args.tutorials / t / "").is_dir()]
-    if missing or not args.course.is_file():
-        print("tutorials-check: %s" % ("no %s in %s" % (", ".join(missing), args.tutorials) if missing
-                                       else "%s does not exist: make build first" % args.course), file=sys.stderr)
-        return 2
-    started = time.monotonic()
-    ws = args.work.resolve() if args.work else Path(tempfile.mkdtemp(prefix="tutorials-check-"))
-    ok = True
-    try:
-        left_out = copy_sources(args.tutorials, ws / "src")
-        print("tutorials-check: overlay %s on %s; left out: %s" % (ws, args.course.parent, "; ".join(left_out)),
-              flush=True)
-        built = build(ws, args.course)
-        print("build: %d packages (%s), %d failed%s, %.1f s" % (
-            len(built.packages), " ".join(built.packages), len(built.failed),
-            " (%s)" % " ".join(built.failed) if built.failed else "", built.seconds), flush=True)
-        if built.reason:
-            print("  " + built.reason.replace("\n", "\n  "))
-        ok = built.ok
-        from course_checks.isolation import sourced_env
-        env = sourced_env(ws / "devel" / "setup.bash") if (ws / "devel" / "setup.bash").exists() else None
-        if env is not None and not args.skip_tests:
-            tests = run_tests(ws, env)
-            print("tests: %s in %d rostest files, %.1f s%s" % (tests.summary, tests.files, tests.seconds,
-                                                               "" if tests.ok else ": FAILED"), flush=True)
-            for failure in tests.failing:
-                print("  failed: " + failure)
-            ok = ok and tests.ok
-        if env is not None and not args.skip_demo:
-            where = subprocess.run(["rospack", "find", "turtle_tf2"], env=env, stdout=subprocess.PIPE,
-                                   universal_newlines=True).stdout.strip()
-            for flavour, launch in DEMOS:
-                shown = demo(flavour, launch, env)
-                after = [s for s in shown.samples if s[0] != "catch-up"]
-                print("demo %s (%s, turtle_tf2 from %s): %s, %.1f s" % (
-                    launch, flavour, where, "turtle2 follows turtle1: %.2f m apart after the drive, %.2f m at "
-                    "the end" % (max(s[6] for s in after[:int(DRIVE_S / SAMPLE_S) + 2]), after[-1][6])
-                    if shown.ok else "FAILED", shown.seconds), flush=True)
-                for row in follow_table(shown.samples):
-                    print(row)
-                if shown.reason:
-                    print("  " + shown.reason.replace("\n", "\n  "))
-                ok = ok and shown.ok
-    finally:
-        if args.keep or args.work:
-            print("tutorials-check: the overlay is kept in %s" % ws)
-        else:
-            shutil.rmtree(ws, ignore_errors=True)
-    print("tutorials-check: %s in %.1f s" % ("passed" if ok else "FAILED", time.monotonic() - started))
-    return 0 if ok else 1
+def missing(opts: argparse.Namespace) -> str:
+    """Why the suite cannot start ('' when it can): a tree not in the folder, the course not built."""
+    absent = [t for t in TREES if not (opts.tutorials / t / "").is_dir()]
+    if absent:
+        return "no %s in %s" % (", ".join(absent), opts.tutorials)
+    return "" if opts.course.is_file() else "%s does not exist: make build first" % opts.course
 
-
-if __name__ == "__main__":
-    sys.exit(main(sys.argv[1:]))

@@ -1,4 +1,4 @@
-"""What one student's container costs, read from the kernel's counters (bench/hub_bench.py).
+"""What one student's container costs, read from the kernel's counters (bench/hub_bench.py measures with it).
 
 A container's cost is its cgroup's: CPU as the delta of the cgroup's own counter over a window
 (cgroup v1 `cpuacct.usage`, ns, or v2 `cpu.stat` usage_usec), so a container's start-up is not

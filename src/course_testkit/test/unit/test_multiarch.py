@@ -1,15 +1,9 @@
-"""tools/multiarch.py without podman or qemu: the architecture names, each image's and base's
+"""course_testkit.multiarch without podman or qemu: the architecture names, each image's and base's
 name, which binfmt_misc entries a container can use, and the platforms read off a manifest list.
 (`make image-multiarch` and `make image-arm64-check` run the real thing, as root, in hours.)"""
-import importlib.util
-from pathlib import Path
-
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
-spec = importlib.util.spec_from_file_location("multiarch", ROOT / "tools" / "multiarch.py")
-multiarch = importlib.util.module_from_spec(spec)
-spec.loader.exec_module(multiarch)
+from course_testkit import multiarch
 
 
 def test_machines_map_to_the_two_image_architectures_and_others_are_refused():
@@ -24,7 +18,7 @@ def test_each_architecture_has_its_own_tag_and_the_host_keeps_the_shared_base():
     assert multiarch.image_name("amd64") == "localhost/ros-course-amd64"
     with pytest.raises(ValueError):
         multiarch.image_name("armhf")
-    # the host's base is the one tools/podman_check.py imports; a foreign one never takes its name
+    # the host's base is the one course_testkit.podman imports; a foreign one never takes its name
     assert multiarch.base_image("amd64", "amd64") == "debian:bookworm"
     assert multiarch.base_image("arm64", "amd64") == "localhost/debian:bookworm-arm64"
     assert multiarch.base_image("amd64", "arm64") == "localhost/debian:bookworm-amd64"

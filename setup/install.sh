@@ -3,11 +3,11 @@
 #   [1/5] Debian packages: 79 to install with apt (log: logs/apt.log) ... 143 s
 # apt's, pip's, npm's and catkin_make's output goes to the log the line names; a step that fails
 # prints the last lines of its log and the script exits non-zero. Steps with nothing to do say so.
-#   bash tools/deps.sh           make deps: the Debian ROS 1 packages that are missing (apt-get update
-#                                first, only then), the sandbox user, the repo-local venvs with the
-#                                pinned PyPI packages (only when their requirements changed)
-#   bash tools/deps.sh --build   make build: the same, then catkin_make in catkin_ws and, where the
-#                                reference solutions are, in their overlay solutions_ws
+#   bash setup/install.sh           make deps: the Debian ROS 1 packages that are missing (apt-get update
+#                                   first, only then), the sandbox user, the repo-local venvs with the
+#                                   pinned PyPI packages (only when their requirements changed)
+#   bash setup/install.sh --build   make build: the same, then catkin_make in catkin_ws and, where the
+#                                   reference solutions are, in their overlay solutions_ws
 # COURSE_JUPYTER=0 leaves JupyterLab out; COURSE_HUB=1 adds the class's hub (make hub, docs/hub.md).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -102,7 +102,7 @@ missing_debs() {  # missing_debs PACKAGE...: those not installed
 
 # Debian's ROS packages, and the sandbox user (course_sandbox: graded student code runs as
 # coursesandbox when the grader is root).
-mapfile -t wanted < <(grep -v -e '^#' -e '^[[:space:]]*$' "$root/tools/apt-packages.txt")
+mapfile -t wanted < <(grep -v -e '^#' -e '^[[:space:]]*$' "$root/setup/apt-packages.txt")
 mapfile -t missing < <(missing_debs "${wanted[@]}")
 need_user=0
 [ "$(id -u)" -ne 0 ] || getent passwd coursesandbox >/dev/null || need_user=1

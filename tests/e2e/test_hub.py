@@ -1,5 +1,5 @@
-#!/usr/bin/env python3
-"""`make hub-check`: the class's hub end to end, with real parts (root, podman).
+"""`make hub-check`: the class's hub end to end, with real parts (root, podman). An end-to-end suite
+(the `e2e` marker: `make test` leaves it out).
 
     sudo make hub-check                                   # builds the student image, then checks
     sudo make hub-check HUB_CHECK_ARGS="--image localhost/ros-course-hub --no-build"
@@ -28,13 +28,15 @@ server, terminals through the hub's proxy):
   with its reason, carol (nothing) gets no points; each reads their own report in ~/grades of
   their workbench, read-only, and only their own.
 
-One line per check, the last `hub check K/N`; exit code 0 when all passed. Everything it
-started is stopped and removed at the end (--keep leaves the data folder).
+One line per check, the last `hub check K/N`; the test passes when all passed. Everything it
+started is stopped and removed at the end (--keep leaves the data folder). HUB_CHECK_ARGS in the
+environment holds the options (course_testkit.hub_suite.options):
+
+    sudo HUB_CHECK_ARGS="--no-build" python3 -m pytest -m e2e -s tests/e2e/test_hub.py   # sourced workspace
 """
 from __future__ import annotations
 
 import argparse
-import contextlib
 import csv
 import json
 import os
@@ -42,28 +44,28 @@ import re
 import secrets
 import shutil
 import signal
-import socket
 import subprocess
-import sys
 import tempfile
 import time
-import traceback
 import urllib.parse
 import urllib.request
 from pathlib import Path
-from typing import Callable, Dict, List, Optional
+from typing import Dict, List
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tools"))
-from podman_check import PODMAN as BUILD_PODMAN, ensure_podman, import_base, network_mounts  # noqa: E402
+import pytest
 
-from course_hub import names as hub_names  # noqa: E402
-from course_hub.runner import PODMAN  # noqa: E402  (the hub's own podman: its networks)
-from course_hub import passwords as hub_passwords  # noqa: E402
-from course_testkit.browser import chromium  # noqa: E402
-from course_testkit.hub import HubUser, LocalHub, SpawnFailed  # noqa: E402
-from course_testkit.jupyter import Terminal  # noqa: E402
-from course_checks.waiting import wait_for  # noqa: E402
+from course_hub import names as hub_names
+from course_hub.runner import PODMAN  # the hub's own podman: its networks
+from course_hub import passwords as hub_passwords
+from course_testkit.browser import chromium
+from course_testkit.hub import HubUser, LocalHub, SpawnFailed
+from course_testkit.hub_suite import (CONNECT, EVIL_PAGE, Report, build_image, cleanup, container_ip, finish,
+                                      host_connects, options, other_host, podman_out, upload)
+from course_testkit.jupyter import Terminal
+from course_testkit.podman import CHECKOUT
+from course_checks.waiting import wait_for
+
+pytestmark = pytest.mark.e2e
 
 STUDENTS = ("alice", "bob", "carol")
 # names that once shared folders (DockerSpawner escaped - as -2d, the hooks did not): each must
@@ -76,7 +78,7 @@ FAILING = "dave"        # a student whose server cannot start (a memory limit to
 TA = "tom"
 TOO_LITTLE_MEMORY = "8M"  # JupyterLab cannot answer in it (24M sometimes did, then died)
 MILESTONE = "chatter"
-SAMPLES = ROOT / "courses" / "robotics_labs" / "samples"
+SAMPLES = CHECKOUT / "courses" / "robotics_labs" / "samples"
 FILES = {"alice": SAMPLES / "lab2_chatter_scripts" / "lab2" / "src" / "chatter",
          "bob": SAMPLES / "lab2_chatter_no_chmod" / "chatter"}
 # dave's server is given too little memory to start; the others keep the course's limit
@@ -86,120 +88,8 @@ c.CourseSpawner.mem_limit = lambda spawner: %(small)r if spawner.user.name == %(
 ''' % {"small": TOO_LITTLE_MEMORY, "failing": FAILING}
 
 
-# A page a student serves from her own server (any file behind jupyter-server-proxy's /proxy/<port>/):
-# it tries, with the cookies of whoever opens it, to read the hub's API, to make alice an admin
-# (which the hub refuses without an XSRF token), then to read a hub page's XSRF token in a popup
-# and, with it, to make alice an admin and make a token. Its findings go to its title. On the
-# hub's own origin (no subdomains) the popup route works (docs/hub.md, the control).
-EVIL_PAGE = """<!doctype html><title>waiting</title><script>
-(async () => {
-  const hub = "%(hub)s", out = [];
-  try { const r = await fetch(hub + "/hub/api/users", {credentials: "include"});
-        out.push("read:" + r.status); } catch (e) { out.push("read-blocked"); }
-  try { const r = await fetch(hub + "/hub/api/users/alice", {method: "PATCH", credentials: "include",
-          headers: {"Content-Type": "application/json"}, body: JSON.stringify({admin: true})});
-        out.push("patch:" + r.status); } catch (e) { out.push("patch-blocked"); }
-  try { await fetch(hub + "/hub/api/users/alice", {method: "PATCH", mode: "no-cors", credentials: "include",
-          body: JSON.stringify({admin: true})}); out.push("blind-patch-sent"); } catch (e) { out.push("blind-blocked"); }
-  try { const w = window.open(hub + "/hub/token");
-        if (!w) { out.push("popup-not-opened"); throw 0; }
-        let xsrf = null;
-        for (let i = 0; i < 100 && !xsrf; i++) {
-          await new Promise(r => setTimeout(r, 100));
-          xsrf = w.jhdata && w.jhdata.xsrf_token;  // a SecurityError unless the hub is this page's origin
-        }
-        out.push("popup-read");
-        const headers = {"X-XSRFToken": xsrf, "Content-Type": "application/json"};
-        let r = await fetch(hub + "/hub/api/users/alice", {method: "PATCH", credentials: "include", headers,
-          body: JSON.stringify({admin: true})});
-        out.push("xsrf-patch:" + r.status);
-        r = await fetch(hub + "/hub/api/users/tom/tokens", {method: "POST", credentials: "include", headers,
-          body: JSON.stringify({note: "alice's"})});
-        out.push("token:" + r.status); } catch (e) { if (e !== 0) out.push("popup-blocked"); }
-  document.title = "done " + out.join(" ");
-})();
-</script>"""
-
-
-class Report:
-    """One line per check; the count at the end."""
-
-    def __init__(self) -> None:
-        self.passed = 0
-        self.total = 0
-
-    def check(self, name: str, ok: bool, detail: str = "") -> bool:
-        self.total += 1
-        self.passed += bool(ok)
-        print("%s %s%s" % ("ok  " if ok else "FAIL", name, (": " + detail) if detail else ""), flush=True)
-        return ok
-
-    def attempt(self, name: str, fn: Callable[[], str]) -> bool:
-        """A check whose function returns its detail, or raises (AssertionError: failed)."""
-        try:
-            return self.check(name, True, fn())
-        except Exception as err:  # every failure becomes the check's line
-            detail = str(err) or type(err).__name__
-            if not isinstance(err, AssertionError):
-                detail = "%s: %s" % (type(err).__name__, detail)
-            return self.check(name, False, detail.replace("\n", " | ")[:1500])
-
-
-def build_image(image: str, log: Path) -> None:
-    """The student image, from debian:bookworm imported from a debootstrap when missing (no
-    registry is reachable here; tools/podman_check.py)."""
-    ensure_podman()
-    import_base(log)
-    scratch = Path(tempfile.mkdtemp(prefix="hub-check-build-"))
-    try:
-        with open(log, "ab") as out:
-            subprocess.run(["nice", "-n", "10"] + BUILD_PODMAN + ["build", "--network", "host", *network_mounts(scratch),
-                           "-f", str(ROOT / "docker" / "Dockerfile"), "-t", image, str(ROOT)],
-                           check=True, stdout=out, stderr=subprocess.STDOUT)
-    finally:
-        shutil.rmtree(scratch, ignore_errors=True)
-
-
-def podman_out(*args: str) -> str:
-    return subprocess.run(PODMAN + list(args), check=False, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
-                          text=True).stdout.strip()
-
-
-def container_ip(user: str) -> str:
-    return podman_out("inspect", "course-hub-%s" % user, "-f", "{{range .NetworkSettings.Networks}}{{.IPAddress}}{{end}}")
-
-
-def host_connects(ip: str, port: int) -> bool:
-    try:
-        with socket.create_connection((ip, port), timeout=3):
-            return True
-    except OSError:
-        return False
-
-
-CONNECT = ("python3 -c \"import socket,sys; s=socket.socket(); s.settimeout(3); "
-           "sys.exit(0 if s.connect_ex(('%s', %d)) == 0 else 7)\"")
-
-
-def upload(user: HubUser, folder: Path, target: str) -> int:
-    """The files of `folder` written under `target` through the contents API (the file browser's upload)."""
-    count = 0
-    user.make_folder(target)
-    for path in sorted(folder.rglob("*")):
-        rel = "%s/%s" % (target, path.relative_to(folder).as_posix())
-        if path.is_dir():
-            user.make_folder(rel)
-        else:
-            user.write_file(rel, path.read_text())
-            count += 1
-    return count
-
-
-def run(opts: argparse.Namespace) -> int:
-    report = Report()
-    work = Path(tempfile.mkdtemp(prefix="hub-check-"))
-    os.chmod(work, 0o755)
-    started = time.monotonic()
+def run(opts: argparse.Namespace, report: Report, work: Path) -> None:
+    """Every check in turn, each a line of `report`; the first whose failure leaves nothing to check ends it."""
     if not opts.no_build:
         report.attempt("image %s built from docker/Dockerfile" % opts.image,
                        lambda: (build_image(opts.image, work / "build.log"), "log in %s" % (work / "build.log"))[1])
@@ -211,7 +101,7 @@ def run(opts: argparse.Namespace) -> int:
     try:
         if not report.attempt("make hub's runner starts JupyterHub with deploy/jupyterhub's config", hub.start):
             print(hub.tail())
-            return finish(report, started)
+            return
         # the initial passwords the hub gave the class list at its start (its hand-out sheet)
         passwords.update(hub_passwords.handed_out(str(hub.data)))
         for name in STUDENTS + NAMED + (TA,):
@@ -283,7 +173,7 @@ def run(opts: argparse.Namespace) -> int:
                     term.run("cat ~/turtlesim.log ~/roscore.log")[1][-1500:]
             return "roscore and turtlesim_<name> running in each student's terminal (websocket through the hub)"
         if not report.attempt("each student runs turtlesim in a terminal", turtlesims):
-            return finish(report, started)
+            return
 
         def own_graph() -> str:
             code, nodes = terms["alice"].run("rosnode list")
@@ -363,7 +253,7 @@ def run(opts: argparse.Namespace) -> int:
         report.attempt("alice cannot reach bob's server or terminals through the hub", no_way_to_bob)
 
         def no_port_of_bob() -> str:
-            ip = container_ip("bob")
+            ip = container_ip(PODMAN, "bob")
             assert ip, "no address of bob's container"
             code, said = terms["bob"].run("(python3 -m http.server 9999 --bind 0.0.0.0 > /dev/null 2>&1 &)")
             assert wait_for(lambda: host_connects(ip, 9999), 20, 0.2), "the hub's host cannot reach bob's port 9999"
@@ -455,7 +345,7 @@ def run(opts: argparse.Namespace) -> int:
 
         def culled() -> str:
             culler = subprocess.Popen(
-                [str(ROOT / ".venv-hub" / "bin" / "python3"), "-m", "jupyterhub_idle_culler", "--timeout=1",
+                [str(CHECKOUT / ".venv-hub" / "bin" / "python3"), "-m", "jupyterhub_idle_culler", "--timeout=1",
                  "--cull-every=2", "--url=%s/hub/api" % hub.url],
                 env=dict(os.environ, JUPYTERHUB_API_TOKEN=hub.culler_token), stdout=subprocess.DEVNULL,
                 stderr=subprocess.STDOUT, start_new_session=True)
@@ -465,7 +355,7 @@ def run(opts: argparse.Namespace) -> int:
                 os.killpg(culler.pid, signal.SIGTERM)
                 culler.wait(30)
             assert gone, "still running: %s" % [n for n in STUDENTS + NAMED if users[n].server_state()]
-            assert not podman_out("ps", "-q", "--filter", "name=course-hub-alice"), "alice's container is still there"
+            assert not podman_out(PODMAN, "ps", "-q", "--filter", "name=course-hub-alice"), "alice's container is still there"
             seconds = users["alice"].start()
             status, url = users["alice"].open_server()  # a new server: the hub's OAuth again
             assert status == 200 and "/user/alice/lab" in url, (status, url)
@@ -655,7 +545,7 @@ def run(opts: argparse.Namespace) -> int:
             listening = subprocess.run(["ss", "-Hltn", "sport = :%d" % hub.api_port], stdout=subprocess.PIPE,
                                        text=True, check=False).stdout
             assert "0.0.0.0:%d" % hub.api_port in listening, "the hub's API: %r" % listening
-            with test_host() as (host_ip, run_there):
+            with other_host() as (host_ip, run_there):
                 other = subprocess.Popen(["python3", "-m", "http.server", str(EVIL_PORT), "--bind", "0.0.0.0"],
                                          stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
                 try:
@@ -677,74 +567,21 @@ def run(opts: argparse.Namespace) -> int:
             except Exception:
                 pass
         hub.stop()
-        cleanup(work, opts.keep)
-    return finish(report, started)
 
 
-@contextlib.contextmanager
-def test_host():
-    """Another host on the network: a network namespace of this check joined to this machine by a
-    veth pair (10.250.47.1 here, .2 there); yields this machine's address there and a function
-    running a shell command there (its exit code)."""
-    name, here, there = "hubcheck-%d" % os.getpid(), "hcv%d" % (os.getpid() % 100000), "hcp%d" % (os.getpid() % 100000)
-    setup = [["ip", "netns", "add", name], ["ip", "link", "add", here, "type", "veth", "peer", "name", there],
-             ["ip", "link", "set", there, "netns", name], ["ip", "addr", "add", "10.250.47.1/30", "dev", here],
-             ["ip", "link", "set", here, "up"],
-             ["ip", "netns", "exec", name, "ip", "addr", "add", "10.250.47.2/30", "dev", there],
-             ["ip", "netns", "exec", name, "ip", "link", "set", there, "up"],
-             ["ip", "netns", "exec", name, "ip", "link", "set", "lo", "up"]]
-    try:
-        for command in setup:
-            subprocess.run(command, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-        yield "10.250.47.1", lambda shell: subprocess.run(["ip", "netns", "exec", name, "sh", "-c", shell],
-                                                          stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL).returncode
-    finally:
-        subprocess.run(["ip", "link", "del", here], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        subprocess.run(["ip", "netns", "del", name], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-
-
-def cleanup(work: Path, keep: bool) -> None:
-    """The check's containers and networks (the hub stops the servers; this makes sure), the
-    students' disks unmounted (LocalHub.stop does; this makes sure), its data."""
-    for container in podman_out("ps", "-aq", "--filter", "name=course-hub-").split():
-        podman_out("rm", "-f", container)
-    for network in podman_out("network", "ls", "-q", "--filter", "name=course-hub-net-").split():
-        podman_out("network", "rm", "-f", network)
-    with open("/proc/mounts") as mounts:
-        mounted = [line.split()[1] for line in mounts if line.split()[1].startswith(str(work) + "/")]
-    for point in sorted(mounted, reverse=True):
-        subprocess.run(["umount", point], check=False)
-    if not keep:
-        shutil.rmtree(work, ignore_errors=True)
-    else:
-        print("hub check: kept %s" % work)
-
-
-def finish(report: Report, started: float) -> int:
-    print("hub check took %.0f s, load average %s" % (time.monotonic() - started, " ".join(
-        open("/proc/loadavg").read().split()[:3])))
-    print("hub check %d/%d" % (report.passed, report.total), flush=True)
-    return 0 if report.passed == report.total and report.total else 1
-
-
-def main() -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--image", default="localhost/ros-course", help="the student image's tag")
-    parser.add_argument("--no-build", action="store_true", help="use the image as it is")
-    parser.add_argument("--keep", action="store_true", help="keep the scratch folder (data, logs)")
-    parser.add_argument("--extra-config", default="", help="JupyterHub config run after the course's: to see a "
-                        "check fail when a protection is taken away (docs/hub.md)")
-    opts = parser.parse_args()
+def test_the_hub_end_to_end():
+    opts = options(os.environ.get("HUB_CHECK_ARGS", ""))
     if os.geteuid() != 0:
-        print("hub check: run it as root (sudo make hub-check): podman runs the containers as root here",
-              file=sys.stderr)
-        return 2
+        pytest.fail("run it as root (sudo make hub-check): podman runs the containers as root here", pytrace=False)
+    report = Report()
+    work = Path(tempfile.mkdtemp(prefix="hub-check-"))
+    os.chmod(work, 0o755)
+    started = time.monotonic()
     try:
-        return run(opts)
-    except Exception:
-        traceback.print_exc()
-        return 1
-
-
-if __name__ == "__main__":
-    sys.exit(main())
+        run(opts, report, work)
+    finally:
+        cleanup(PODMAN, work, opts.keep)
+        finish(report, started)
+    if report.failed or not report.total:
+        pytest.fail("%d of %d hub checks failed (their lines above say why): %s" % (
+            len(report.failed), report.total, "; ".join(report.failed)), pytrace=False)

@@ -4,7 +4,7 @@ terminal, starts the node mybot_teleop, publishes geometry_msgs/Twist on /turtle
 its keys make turtle1 go forward, backward and turn left and right. The script name and the keys
 are the student's: each executable is started until one publishes the topic (if none does, again
 with the parameters of the student's turtlesim.launch: Part C may have made the topic a parameter),
-and the key map is found by typing (see course_milestones.keymap). Checks: courses/robotics_labs/milestones/teleop.md."""
+and the key map is found by typing (see keymap.py, beside this check). Checks: courses/robotics_labs/milestones/teleop.md."""
 import os
 
 import rospy

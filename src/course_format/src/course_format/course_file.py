@@ -8,6 +8,7 @@ grader's command line reads this before any master runs.
 """
 from __future__ import annotations
 
+import json
 import os
 import re
 from typing import Any, Dict, List, NamedTuple, Optional, Sequence, Tuple
@@ -436,6 +437,25 @@ def _predicate(check: _Checker, path: Path, predicate: Any) -> None:
             check.error(path + ("between",), "expected [LO, HI], two numbers, LO <= HI; got %r" % (bounds,))
     if "nonempty" in predicate:
         check.kind(path + ("nonempty",), predicate["nonempty"], schema.BOOL)
+
+
+DURATIONS_FILE = "durations.json"
+
+
+def typical_durations(course: Course) -> Dict[str, float]:
+    """The course's durations.json, if it has one: how long each milestone's run typically takes,
+    in seconds (the order the first grading into a fresh output folder starts runs in, longest
+    first). Only a hint: a missing or malformed file, or a value that is no positive number, is
+    left out, and changes no verdict."""
+    try:
+        with open(os.path.join(course.root, DURATIONS_FILE)) as f:
+            data = json.load(f)
+    except (OSError, ValueError):
+        return {}
+    if not isinstance(data, dict):
+        return {}
+    return {str(k): float(v) for k, v in data.items()
+            if isinstance(v, (int, float)) and not isinstance(v, bool) and 0 < v < float("inf")}
 
 
 def builtin_course_dir() -> str:

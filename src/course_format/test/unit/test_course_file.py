@@ -246,3 +246,22 @@ def test_a_layout_names_a_type_the_step_names_and_gives_field_types():
     found = problems(base + "            p/Other: {age: int32}\n            p/Add: {a: int32}\n")
     assert any("layouts.p/Other: 'p/Other' is not among the messages and services named" in p for p in found), found
     assert any("layouts.p/Add: expected {field: type}" in p for p in found), found
+
+
+@pytest.mark.parametrize("text, expected", [
+    ('{"a": 3.5, "b": 2}', {"a": 3.5, "b": 2.0}),
+    ('{"a": -1, "b": "slow", "c": true, "d": null, "e": 1e999}', {}),  # no positive finite number: left out
+    ("[1, 2]", {}), ("{not json", {}),
+])
+def test_a_course_s_typical_durations_are_a_hint_that_never_raises(tmp_path, text, expected):
+    course = parsed("name: x\ntitle: y\nmilestones:\n  - {id: a, title: t, text: x, check: mine.test}\n",
+                    _with_check(tmp_path))
+    assert course_file.typical_durations(course) == {}  # no file
+    (tmp_path / course_file.DURATIONS_FILE).write_text(text)
+    assert course_file.typical_durations(course) == expected
+
+
+def _with_check(folder):
+    os.makedirs(folder / "checks", exist_ok=True)
+    (folder / "checks" / "mine.test").write_text("<launch/>")
+    return folder

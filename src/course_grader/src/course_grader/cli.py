@@ -260,7 +260,7 @@ def main(argv: Optional[List[str]] = None) -> int:
                                             opts.verbose or reference, [s.path for s in subs if s.path],
                                             opts.builds, opts.disk * MiB,
                                             [a for a in (course.solution, course.samples) if a],
-                                            early=opts.early))
+                                            early=opts.early, typical=course_file.typical_durations(course)))
     except levels.Unavailable as err:
         release_output(out)
         print("cannot grade: %s" % err, file=sys.stderr)

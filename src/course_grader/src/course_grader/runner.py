@@ -30,7 +30,7 @@ import time
 import traceback
 import zipfile
 from concurrent.futures import ThreadPoolExecutor
-from typing import Callable, Dict, List, NamedTuple, Optional, Sequence, Tuple
+from typing import Callable, Dict, List, Mapping, NamedTuple, Optional, Sequence, Tuple
 
 from course_format.milestone import Milestone
 from course_format import causes, course_file
@@ -50,7 +50,6 @@ from course_grader.class_outputs import WORK_DIR
 from course_grader.sandboxing import SandboxPlan
 from course_grader.submissions import Package, Submission
 from course_grader.student_files import copy_logs
-from course_grader.typical_durations import TYPICAL_S
 from course_grader.verdict import Verdict
 
 MILESTONE_PACKAGE = "course_milestones"
@@ -153,6 +152,7 @@ class Options(NamedTuple):
     disk_bytes: int = Limits().disk_bytes  # what one student's work folder may take on disk in total
     answers: Sequence[str] = ()  # the course's reference solution and samples: hidden from student code
     early: int = 0  # runs started while a submission builds, when no other run is under way (early_runs)
+    typical: Mapping[str, float] = {}  # the course's typical run times (course_file.typical_durations)
 
 
 class _Progress:
@@ -195,7 +195,7 @@ class Grader:
         students = {p for m in self.milestones for p in m.packages}
         self._protected = workspace.course_packages() - students
         self._durations_path = os.path.join(options.out, WORK_DIR, "durations.json")
-        self._durations = dict(TYPICAL_S, **_load_json(self._durations_path))
+        self._durations = dict(options.typical, **_load_json(self._durations_path))
         self._stop = threading.Event()
         self._pool = ThreadPoolExecutor(max(1, options.jobs), thread_name_prefix="grade")
         self._builds = ThreadPoolExecutor(max(1, options.builds), thread_name_prefix="build")

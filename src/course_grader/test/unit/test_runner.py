@@ -101,15 +101,15 @@ def test_autograder_files_without_git_follow_the_gitignore(tmp_path):
     assert repo_files(str(tmp_path)) == [".gitignore", "setup.sh", "src/pkg/a.py"]
 
 
-def test_every_milestone_has_a_typical_duration():
+def test_every_milestone_of_the_builtin_course_has_a_typical_duration():
     from course_format import course_file
-    from course_grader.typical_durations import TYPICAL_S
-    assert sorted(TYPICAL_S) == sorted(m.name for m in course_file.load(course_file.builtin_course_dir()).milestones)
+    course = course_file.load(course_file.builtin_course_dir())
+    assert sorted(course_file.typical_durations(course)) == sorted(m.name for m in course.milestones)
 
 
 def test_a_first_grading_into_a_fresh_out_starts_the_longest_runs_first(tmp_path, monkeypatch):
-    """Without a _work/durations.json the order comes from the typical durations."""
-    from course_grader.typical_durations import TYPICAL_S
+    """Without a _work/durations.json the order comes from the course's typical durations."""
+    typical = {"chatter": 3.0, "checkpoint1": 5.6}
     started = []
 
     def recording_rostest(pkg, test_file, **kwargs):
@@ -123,8 +123,8 @@ def test_a_first_grading_into_a_fresh_out_starts_the_longest_runs_first(tmp_path
     monkeypatch.setattr(workspace, "course_site", lambda setup: "")
     monkeypatch.setattr(workspace, "build", lambda ws, *args: built.append(sorted(os.listdir(os.path.join(ws, "src"))))
                         or BuildResult(True, "", "", {"PATH": "/usr/bin"}))
-    assert TYPICAL_S["checkpoint1"] > TYPICAL_S["chatter"]
-    grader = runner.Grader([CHATTER, CP1], runner.Options(str(tmp_path / "out"), jobs=1), say=lambda line: None)
+    grader = runner.Grader([CHATTER, CP1], runner.Options(str(tmp_path / "out"), jobs=1, typical=typical),
+                           say=lambda line: None)
     reference = _folder(tmp_path, "solutions", ["chatter", "my_chatter"])
     grader.grade([Submission(runner.REFERENCE, reference.path)], reference=True)
     assert started == ["checkpoint1.test", "chatter.test"]

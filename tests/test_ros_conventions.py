@@ -32,6 +32,7 @@ ROSDEP_KEYS = {
     "yaml": "python3-yaml",
     "matplotlib": "python3-matplotlib",
     "hypothesis": "python3-hypothesis",
+    "coverage": "python3-coverage",
     "pytest": "python3-pytest",
     "rospkg": "python3-rospkg",
     "catkin_pkg": "python3-catkin-pkg",

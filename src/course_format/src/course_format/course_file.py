@@ -17,7 +17,7 @@ from xml.sax.saxutils import quoteattr
 import yaml
 
 from course_format import causes
-from course_format.milestone import Milestone, Step
+from course_format.milestone import Equivalent, Milestone, Step
 from course_format import schema
 
 COURSE_FILE = "course.yaml"
@@ -26,7 +26,9 @@ MILESTONE_ID = re.compile(r"^[a-z][a-z0-9_]*$")
 PACKAGE_NAME = re.compile(r"^[a-z][a-z0-9_]*$")
 TYPE_NAME = re.compile(r"^[A-Za-z]\w*/[A-Za-z]\w*$")
 COURSE_KEYS = ("name", "title", "solution", "samples", "starter", "milestones")
-MILESTONE_KEYS = ("id", "title", "text", "points", "packages", "world", "time_limit", "steps", "check")
+MILESTONE_KEYS = ("id", "title", "text", "points", "packages", "world", "time_limit", "steps", "check",
+                  "equivalent")
+MUTANT_NAME = re.compile(r"^[a-z][a-z0-9_]*_[1-9][0-9]*$")  # course-lint's OPERATOR_N
 DEFAULT_TIME_LIMIT_S = 90.0
 
 Path = Tuple[Any, ...]
@@ -240,10 +242,34 @@ def _milestone(check: _Checker, path: Path, item: Any, root: str, file: str) -> 
             test_file = _check_file(check, path + ("check",), item["check"], root)
     elif check.kind(path + ("steps",), item["steps"], schema.LIST):
         steps = _steps(check, path + ("steps",), item["steps"], os.path.basename(file))
+    equivalent = _equivalent(check, path + ("equivalent",), item.get("equivalent", {}), item.get("packages"))
     if len(check.problems) > before:
         return None
     return Milestone(item["id"], item["title"], item["text"], test_file, tuple(packages), float(points),
-                     steps, tuple(world), file, float(limit))
+                     steps, tuple(world), file, float(limit), equivalent)
+
+
+def _equivalent(check: _Checker, path: Path, given: Any, packages: Any) -> Tuple[Equivalent, ...]:
+    """`equivalent: {NAME: REASON}`: the mutants course-lint makes of this milestone's reference
+    (NAME as it names them, OPERATOR_N) that no check can kill, each with the reason a reviewer
+    reads. Whether each names a surviving mutant only course-lint can tell (docs/course_lint.md)."""
+    if not isinstance(given, dict):
+        check.error(path, "expected a mapping of mutant names to reasons, e.g. {rate_div10_1: \"section 2 "
+                          "fixes no rate\"}, got %r" % (given,))
+        return ()
+    if given and not packages:
+        check.error(path, "the milestone names no package: course-lint makes no mutant of it")
+    found = []
+    for name, reason in given.items():
+        if not isinstance(name, str) or not MUTANT_NAME.match(name):
+            check.error(path + (name,), "%r: name a mutant as course-lint does, OPERATOR_N (e.g. rate_div10_1)"
+                        % (name,))
+        elif not isinstance(reason, str) or not reason.strip():
+            check.error(path + (name,), "expected the reason a reviewer reads (why no check can kill it), got %r"
+                        % (reason,))
+        else:
+            found.append(Equivalent(name, reason.strip(), check.lines.of(path + (name,))))
+    return tuple(found)
 
 
 def _check_file(check: _Checker, path: Path, name: str, root: str) -> str:

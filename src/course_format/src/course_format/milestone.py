@@ -14,6 +14,17 @@ class Step(NamedTuple):
     where: str  # "course.yaml:14 (milestones[1].steps[2])", for a message about this step
 
 
+class Equivalent(NamedTuple):
+    """A mutant of the milestone's reference (course-lint's, docs/course_lint.md) that no check can
+    kill, because the text allows what it changes: `equivalent: {NAME: REASON}` in course.yaml.
+    course-lint counts it apart from the survivors, and reports an annotation that names no
+    surviving mutant as an error."""
+
+    mutant: str  # course-lint's name of it, OPERATOR_N (e.g. rate_div10_1)
+    reason: str  # why no check can kill it, for a reviewer
+    line: int  # the annotation's line in the course file
+
+
 class Milestone(NamedTuple):
     """One gradable milestone.
 
@@ -30,6 +41,7 @@ class Milestone(NamedTuple):
     world: the trusted nodes a data milestone starts before the student's (schema.WORLDS).
     course_file: the course.yaml it comes from.
     time_limit: seconds the milestone's rostest may take.
+    equivalent: the mutants of its reference that course-lint is told no check can kill.
     """
 
     name: str
@@ -42,3 +54,4 @@ class Milestone(NamedTuple):
     world: Tuple[str, ...] = ()
     course_file: str = ""
     time_limit: float = 90.0
+    equivalent: Tuple[Equivalent, ...] = ()

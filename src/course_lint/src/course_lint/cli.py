@@ -1,11 +1,14 @@
-"""course-lint DIR [--only M ...] [--jobs J] [--operators a,b] [--mutmut] [--keep DIR] [--list] [--json FILE]
+"""course-lint DIR [--only M ...] [--jobs J] [--operators a,b] [--mutmut] [--grade-all] [--keep DIR] [--list] [--json FILE]
 
 Shows that a course's checks can fail: grades each milestone of the course in DIR (a folder with a
 course.yaml) against the course's reference solution and against mutants of it, the reference
-with one mistake each (docs/course_lint.md lists the operators). Per milestone it prints the
-mutants killed, K/N, and names the survivors: mistakes the milestone's check does not catch.
-Exit code: 1 when a reference fails its milestone, 2 when the course file has an error, else 0.
-The last line is `mutants killed K/N`.
+with one mistake each (docs/course_lint.md lists the operators). Each mutant is killed, survived
+(a mistake the milestone's check does not catch), equivalent (a survivor the course file says no
+check can kill, `equivalent: {NAME: REASON}`) or not run (what it changes never ran while the
+reference passed: not graded). Per milestone it prints K/N, killed over killed and survived, and
+names the others. Exit code: 2 when the course file has an error (an `equivalent` annotation that
+names no surviving mutant among them), else 1 when a reference fails its milestone, else 0. The
+last line is `mutants killed K/N`.
 """
 from __future__ import annotations
 
@@ -20,7 +23,7 @@ from typing import Dict, List, Optional
 from course_format import course_file
 
 from course_lint import generic
-from course_lint.lint import MilestoneLint, Outcome, lint_milestone
+from course_lint.lint import EQUIVALENT, NOT_RUN, STATUSES, MilestoneLint, Outcome, lint_milestone
 from course_lint.mutants import OPERATORS, by_names
 
 EXIT_REFERENCE_FAILS = 1
@@ -37,6 +40,8 @@ def parse(argv: Optional[List[str]]) -> argparse.Namespace:
     parser.add_argument("--keep", metavar="DIR", help="keep the mutants' folders and the grader's output in DIR")
     parser.add_argument("--mutmut", action="store_true",
                         help='also generic Python mutants from mutmut 2 (pip install "mutmut<3")')
+    parser.add_argument("--grade-all", action="store_true",
+                        help="grade every mutant, measuring nothing of the reference's run (no mutant is not run)")
     parser.add_argument("--list", action="store_true", help="print the mutants without grading them")
     parser.add_argument("--json", metavar="FILE", help="also write the table as JSON to FILE")
     return parser.parse_args(argv)
@@ -52,16 +57,55 @@ def survivor(outcome: Outcome) -> str:
     return "%s (%s, %s%s)" % (outcome.name, outcome.mutant.operator.description, where(outcome), graded)
 
 
+def explained(outcome: Outcome) -> str:
+    """An equivalent or not-run mutant: its name, where, and why (the course file's reason, or what never ran)."""
+    return "%s (%s: %s)" % (outcome.name, where(outcome), outcome.why)
+
+
 def milestone_line(result: MilestoneLint) -> str:
+    """NAME  K/N killed  survivors: ...  equivalent: ...  not run: ... (N: killed and survived)."""
     head = "%s  %s%d/%d killed" % (result.milestone.name, "REFERENCE FAILS  " if result.reference_fails else "",
-                                   len(result.killed), len(result.mutants))
-    return "%s  survivors: %s" % (head, ", ".join(survivor(o) for o in result.survivors) or "none")
+                                   len(result.killed), result.scored)
+    return "%s  survivors: %s  equivalent: %s  not run: %s" % (
+        head, ", ".join(survivor(o) for o in result.survivors) or "none",
+        ", ".join(explained(o) for o in result.having(EQUIVALENT)) or "none",
+        ", ".join(explained(o) for o in result.having(NOT_RUN)) or "none")
 
 
 def listing(result: MilestoneLint) -> List[str]:
+    reasons = {e.mutant: e.reason for e in result.milestone.equivalent}
     lines = ["%s  %d mutant(s)" % (result.milestone.name, len(result.mutants))]
-    lines += ["  %-18s %-40s %s" % (o.name, where(o), o.mutant.changed[:80]) for o in result.mutants]
+    lines += ["  %-18s %-40s %s%s" % (o.name, where(o), o.mutant.changed[:80],
+                                      "  (equivalent: %s)" % reasons[o.name] if o.name in reasons else "")
+              for o in result.mutants]
     return lines
+
+
+def counts(results: List[MilestoneLint]) -> Dict[str, int]:
+    """Mutants per status over the milestones."""
+    return {status: sum(len(r.having(status)) for r in results) for status in STATUSES}
+
+
+def summary(results: List[MilestoneLint]) -> str:
+    """The line before the last: every mutant made, by status."""
+    found = counts(results)
+    return "mutants: %d made, %d killed, %d survived, %d equivalent, %d not run" % (
+        sum(len(r.mutants) for r in results), found["killed"], found["survived"], found["equivalent"],
+        found["not run"])
+
+
+def shown(path: str) -> str:
+    """A course file's path as the loader shows it: relative when below the current folder."""
+    rel = os.path.relpath(path)
+    return path if rel.startswith(os.pardir) else rel
+
+
+def problems(course: course_file.Course, results: List[MilestoneLint]) -> List[str]:
+    """`FILE:LINE: milestones[i].equivalent.NAME: why` for each annotation that names no survivor."""
+    index = {m.name: i for i, m in enumerate(course.milestones)}
+    return ["%s:%d: milestones[%d].equivalent.%s: %s" % (shown(r.milestone.course_file or course.file), e.line,
+                                                          index[r.milestone.name], e.mutant, why)
+            for r in results for e, why in r.problems]
 
 
 def as_json(course: course_file.Course, results: List[MilestoneLint]) -> Dict:
@@ -70,15 +114,22 @@ def as_json(course: course_file.Course, results: List[MilestoneLint]) -> Dict:
         if o.mutant:
             entry.update(operator=o.mutant.operator.name, description=o.mutant.operator.description,
                          file="%s/%s" % (o.mutant.package, o.mutant.path), line=o.mutant.line,
-                         changed=o.mutant.changed, killed=o.graded and not o.passed)
+                         changed=o.mutant.changed, status=o.status, why=o.why, killed=o.status == "killed")
         return entry
-    return {"course": course.name, "root": course.root,
-            "milestones": [{"name": r.milestone.name, "title": r.milestone.title,
-                            "packages": list(r.milestone.packages), "reference": outcome(r.reference),
-                            "reference_fails": r.reference_fails, "killed": len(r.killed),
-                            "total": len(r.mutants), "mutants": [outcome(o) for o in r.mutants],
-                            "notes": r.notes} for r in results],
-            "killed": sum(len(r.killed) for r in results), "total": sum(len(r.mutants) for r in results)}
+
+    def by_status(found: Dict[str, int]) -> Dict[str, int]:
+        return {status.replace(" ", "_"): n for status, n in found.items()}
+    return dict({"course": course.name, "root": course.root,
+                 "milestones": [dict({"name": r.milestone.name, "title": r.milestone.title,
+                                      "packages": list(r.milestone.packages), "reference": outcome(r.reference),
+                                      "reference_fails": r.reference_fails, "total": r.scored,
+                                      "made": len(r.mutants), "measured": dict(r.measured),
+                                      "mutants": [outcome(o) for o in r.mutants], "notes": r.notes,
+                                      "problems": ["%s: %s" % (e.mutant, why) for e, why in r.problems]},
+                                     **by_status(counts([r]))) for r in results],
+                 "total": sum(r.scored for r in results), "made": sum(len(r.mutants) for r in results),
+                 "problems": problems(course, results)},
+                **by_status(counts(results)))
 
 
 def main(argv: Optional[List[str]] = None) -> int:
@@ -110,7 +161,8 @@ def main(argv: Optional[List[str]] = None) -> int:
             if not milestone.packages:
                 print("%s  not linted: it names no package (it checks the course workspace)" % milestone.name)
                 continue
-            result = lint_milestone(course, milestone, work, opts.jobs, operators, grading=not opts.list)
+            result = lint_milestone(course, milestone, work, opts.jobs, operators, grading=not opts.list,
+                                    probe=not opts.grade_all)
             results.append(result)
             print("\n".join(listing(result)) if opts.list else milestone_line(result), flush=True)
             if result.reference_fails and not opts.list:
@@ -123,7 +175,14 @@ def main(argv: Optional[List[str]] = None) -> int:
     if opts.json:
         with open(opts.json, "w") as f:
             json.dump(as_json(course, results), f, indent=2)
-    total = sum(len(r.mutants) for r in results)
-    print("mutants listed %d" % total if opts.list else
-          "mutants killed %d/%d" % (sum(len(r.killed) for r in results), total))
-    return EXIT_REFERENCE_FAILS if any(r.reference_fails for r in results) and not opts.list else 0
+    if opts.list:
+        print("mutants listed %d" % sum(len(r.mutants) for r in results))
+        return 0
+    wrong = problems(course, results)
+    for problem in wrong:
+        print(problem, file=sys.stderr)
+    print(summary(results))
+    print("mutants killed %d/%d" % (sum(len(r.killed) for r in results), sum(r.scored for r in results)))
+    if wrong:
+        return EXIT_COURSE_ERROR
+    return EXIT_REFERENCE_FAILS if any(r.reference_fails for r in results) else 0

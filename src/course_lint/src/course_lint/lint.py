@@ -1,10 +1,20 @@
-"""Grade a course's reference solution and its mutants, one grader run per milestone.
+"""Grade a course's reference solution and its mutants, and give each mutant its status.
 
 For a milestone, the reference is the packages of the course's reference solution that the
-milestone names; each mutant is that reference with one file mutated (course_lint.mutants). All
-of them are handed to `rosrun course_grader grade --course DIR --only MILESTONE` as students'
-submissions, so they are built and run exactly as a student's would be. A mutant is killed when
-the milestone fails for it; a survivor is a mistake the milestone's check does not see.
+milestone names; each mutant is that reference with one file mutated (course_lint.mutants). They
+are handed to `rosrun course_grader grade --course DIR --only MILESTONE` as students'
+submissions, so they are built and run exactly as a student's would be: first the reference
+alone, with course-lint's probe beside it (course_lint.ran), which measures what its run
+executes; then, in one grader run, every mutant whose change did run. Each mutant ends with one
+of four statuses:
+- killed: the milestone fails it;
+- survived: the milestone passes it: a mistake the check does not see;
+- equivalent: it survived, and the course file says why no check can kill it
+  (`equivalent: {NAME: REASON}`; an annotation that names no survivor is a problem of the course
+  file, reported by the command);
+- not run: what it changes never ran while the reference passed the milestone, so no check
+  could see it; it is not graded.
+The score is killed / (killed + survived).
 """
 from __future__ import annotations
 
@@ -17,8 +27,9 @@ from typing import Dict, List, NamedTuple, Optional, Sequence, Set, Tuple
 
 from catkin_pkg.packages import find_packages
 from course_format.course_file import Course
-from course_format.milestone import Milestone
+from course_format.milestone import Equivalent, Milestone
 
+from course_lint import ran as measure
 from course_lint import used_files
 from course_lint.mutants import Mutant, Operator, package_mutants
 
@@ -26,6 +37,8 @@ REFERENCE = "reference"
 GRADE = ["rosrun", "course_grader", "grade"]
 LOG_TAIL_LINES = 20
 STARTS = ("rosrun", "roslaunch")  # a start step's parameters naming what it starts
+KILLED, SURVIVED, EQUIVALENT, NOT_RUN = "killed", "survived", "equivalent", "not run"
+STATUSES = (KILLED, SURVIVED, EQUIVALENT, NOT_RUN)
 
 
 class Outcome(NamedTuple):
@@ -34,6 +47,8 @@ class Outcome(NamedTuple):
     graded: bool
     passed: bool
     reason: str  # the grader's reason for a failure, or why it was not graded
+    status: str = ""  # a mutant's: one of STATUSES ("" when not graded: --list)
+    why: str = ""  # not run: what never ran; equivalent: the course file's reason
 
 
 class MilestoneLint(NamedTuple):
@@ -41,14 +56,24 @@ class MilestoneLint(NamedTuple):
     reference: Outcome
     mutants: List[Outcome]
     notes: List[str]
+    problems: Tuple[Tuple[Equivalent, str], ...] = ()  # annotations that name no survivor, and why
+    measured: Tuple[Tuple[str, str], ...] = ()  # (kind of file, "measured" or why not) for not run
+
+    def having(self, status: str) -> List[Outcome]:
+        return [o for o in self.mutants if o.status == status]
 
     @property
     def killed(self) -> List[Outcome]:
-        return [o for o in self.mutants if o.graded and not o.passed]
+        return self.having(KILLED)
 
     @property
     def survivors(self) -> List[Outcome]:
-        return [o for o in self.mutants if not (o.graded and not o.passed)]
+        return self.having(SURVIVED)
+
+    @property
+    def scored(self) -> int:
+        """The score's denominator: killed + survived."""
+        return len(self.killed) + len(self.survivors)
 
     @property
     def reference_fails(self) -> bool:
@@ -115,10 +140,10 @@ def milestone_mutants(milestone: Milestone, folders: Dict[str, str], operators: 
 
 
 def lay_out(base: str, milestone: Milestone, folders: Dict[str, str],
-            mutants: Sequence[Tuple[str, Mutant]]) -> List[str]:
-    """`base/<milestone>__<name>/<package folder>/...` for the reference and each mutant."""
+            entries: Sequence[Tuple[str, Optional[Mutant]]]) -> List[str]:
+    """`base/<milestone>__<name>/<package folder>/...` for each (name, mutant) (None: the reference)."""
     subs = []
-    for name, mutant in [(REFERENCE, None)] + list(mutants):
+    for name, mutant in entries:
         sub = os.path.join(base, "%s__%s" % (milestone.name, name))
         shutil.rmtree(sub, ignore_errors=True)  # an earlier run's, kept with --keep
         for package in milestone.packages:
@@ -169,9 +194,52 @@ def log_tail(log: str) -> str:
         return ""
 
 
+def outcome_of(name: str, mutant: Optional[Mutant], out: str, sub: str, milestone: str) -> Outcome:
+    """The outcome of a graded submission; a mutant's status killed or survived (also when the
+    grader gave no verdict: a mistake not shown to be seen)."""
+    done, passed, reason = verdict(out, os.path.basename(sub), milestone)
+    status = "" if mutant is None else KILLED if done and not passed else SURVIVED
+    return Outcome(name, mutant, done, passed, reason, status)
+
+
+def what_became(outcome: Outcome) -> str:
+    """A mutant that is no survivor, in words, for an annotation that names it."""
+    if outcome.status == KILLED:
+        return "%s is killed (%s)" % (outcome.name, (outcome.reason.splitlines() or [""])[0][:160])
+    if outcome.status == NOT_RUN:
+        return "%s is not run (%s): it needs no annotation" % (outcome.name, outcome.why)
+    return "%s got no verdict from the grader (%s)" % (outcome.name, outcome.reason[:160])
+
+
+def annotated(milestone: Milestone, outcomes: Sequence[Outcome], operators: Sequence[Operator]
+              ) -> Tuple[List[Outcome], List[Tuple[Equivalent, str]]]:
+    """The outcomes with each survivor the milestone's `equivalent` names made equivalent, and the
+    annotations that name no surviving mutant with why. Annotations of operators this run left out
+    (--operators) are passed over."""
+    linted = {op.name for op in operators}
+    index = {o.name: i for i, o in enumerate(outcomes)}
+    result = list(outcomes)
+    problems = []
+    for annotation in milestone.equivalent:
+        if annotation.mutant.rsplit("_", 1)[0] not in linted:
+            continue
+        i = index.get(annotation.mutant)
+        if i is None:
+            problems.append((annotation, "names no mutant of this milestone (its mutants: %s)"
+                             % (", ".join(o.name for o in outcomes) or "none")))
+        elif result[i].status == SURVIVED and result[i].graded:
+            result[i] = result[i]._replace(status=EQUIVALENT, why=annotation.reason)
+        else:
+            problems.append((annotation, "names no surviving mutant: %s" % what_became(result[i])))
+    return result, problems
+
+
 def lint_milestone(course: Course, milestone: Milestone, work: str, jobs: int,
-                   operators: Sequence[Operator], grading: bool = True) -> MilestoneLint:
-    """The reference's and every mutant's outcome (with grading False: the mutants, none graded)."""
+                   operators: Sequence[Operator], grading: bool = True, probe: bool = True) -> MilestoneLint:
+    """The reference's and every mutant's outcome (with grading False: the mutants, none graded).
+    With `probe`, the reference is graded first, alone, with course-lint's probe (course_lint.ran),
+    and the mutants whose change never ran are not graded; without it, the reference and every
+    mutant are graded in one grader run, as before the statuses (none is not run)."""
     folders = reference_packages(course.solution)
     missing = [p for p in milestone.packages if p not in folders]
     if missing:
@@ -182,12 +250,72 @@ def lint_milestone(course: Course, milestone: Milestone, work: str, jobs: int,
     if not grading:
         return MilestoneLint(milestone, Outcome(REFERENCE, None, False, False, "not graded"),
                              [Outcome(name, m, False, False, "not graded") for name, m in mutants], notes)
-    subs = lay_out(os.path.join(work, "submissions"), milestone, folders, mutants)
-    out = os.path.join(work, "grades", milestone.name)
-    print("%s: grading the reference and %d mutant(s) ..." % (milestone.name, len(mutants)), file=sys.stderr, flush=True)
+    base, out = os.path.join(work, "submissions"), os.path.join(work, "grades", milestone.name)
+    reference: Optional[Outcome] = None
+    why_not_run: Dict[str, str] = {}
+    kinds: Dict[str, str] = {}
+    if probe and any(os.path.basename(m.path) != used_files.CMAKE for _, m in mutants):  # the build always runs
+        sub, = lay_out(base, milestone, folders, [(REFERENCE, None)])
+        measure.lay_out(sub)
+        say("%s: grading the reference, measuring what it runs ..." % milestone.name)
+        probed = run_grader(course, milestone, [sub], os.path.join(out, REFERENCE), jobs, notes)
+        outcome = outcome_of(REFERENCE, None, probed, sub, milestone.name)
+        if outcome.graded and outcome.passed:
+            reference = outcome
+            ran = measure.read(measure.workspace(probed, os.path.basename(sub)))
+            notes += ran.notes()
+            kinds = measure.kinds_measured(ran)
+            why_not_run = {name: not_run_of(m, folders, milestone, ran) for name, m in mutants}
+        else:
+            notes.append("the reference failed with course-lint's probe beside it (%s): graded again without "
+                         "it, and every mutant graded" % (outcome.reason.splitlines() or [""])[0][:200])
+    entries = [(name, m) for name, m in mutants if not why_not_run.get(name)]
+    if reference is None:
+        entries = [(REFERENCE, None)] + entries
+    outcomes = {}
+    if entries:
+        subs = lay_out(base, milestone, folders, entries)
+        say("%s: grading %s%d mutant(s) (%d not run) ..." % (
+            milestone.name, "the reference and " if reference is None else "", len(entries) - (reference is None),
+            len(mutants) - len(entries) + (reference is None)))
+        folder = os.path.join(out, "mutants" if len(entries) > (reference is None) else REFERENCE)
+        done = run_grader(course, milestone, subs, folder, jobs, notes)
+        outcomes = {name: outcome_of(name, m, done, sub, milestone.name) for (name, m), sub in zip(entries, subs)}
+    if reference is None:
+        reference = outcomes.pop(REFERENCE)
+    results = [outcomes[name] if name in outcomes else
+               Outcome(name, m, False, False, "not graded: not run", NOT_RUN, why_not_run[name])
+               for name, m in mutants]
+    results, problems = annotated(milestone, results, operators)
+    return MilestoneLint(milestone, reference, results, notes, tuple(problems), tuple(sorted(kinds.items())))
+
+
+def not_run_of(mutant: Mutant, folders: Dict[str, str], milestone: Milestone, ran: measure.Ran) -> str:
+    """measure.not_run for one mutant, given the reference's files."""
+    package = next((name for name in milestone.packages
+                    if os.path.basename(folders.get(name, "")) == mutant.package), mutant.package)
+    folder = folders.get(package, "")
+    try:
+        with open(os.path.join(folder, mutant.path), encoding="utf-8") as f:
+            reference = f.read()
+    except (OSError, UnicodeDecodeError):
+        return ""
+    try:
+        with open(os.path.join(folder, used_files.CMAKE), encoding="utf-8") as f:
+            cmake = f.read()
+    except (OSError, UnicodeDecodeError):
+        cmake = ""
+    return measure.not_run(mutant, reference, ran, package, cmake)
+
+
+def say(line: str) -> None:
+    print(line, file=sys.stderr, flush=True)
+
+
+def run_grader(course: Course, milestone: Milestone, subs: Sequence[str], out: str, jobs: int,
+               notes: List[str]) -> str:
+    """Grade the submissions into `out`; a note when the grader exits other than 0. Returns `out`."""
     code, log = grade(course, milestone, subs, out, jobs)
     if code != 0:
         notes.append("the grader exited %d (log: %s):\n%s" % (code, log, log_tail(log)))
-    outcomes = [Outcome(name, mutant, *verdict(out, os.path.basename(sub), milestone.name))
-                for (name, mutant), sub in zip([(REFERENCE, None)] + mutants, subs)]
-    return MilestoneLint(milestone, outcomes[0], outcomes[1:], notes)
+    return out

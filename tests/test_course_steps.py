@@ -318,6 +318,67 @@ milestones:
       - publish: {topic: /turtle1/cmd_vel, type: geometry_msgs/Twist, message: {linear: {x: 1.0}}, duration: 0.5}
       - pen_colour: {r: 255, g: 0, b: 0, within: 2}
 
+  # -- where a turtle comes to rest, and values a call saved: turtlesim's own teleport_relative moves or
+  # turns turtle1 in one tick (then it stands still), its /spawn answers the name a later step uses
+  - id: rest_ok
+    title: stops_at and turns after turtlesim's teleport_relative
+    text: test
+    packages: [my_robot_controller]
+    world: [turtlesim]
+    steps:
+      - teleport: {x: 2, y: 5.5, theta: 0}
+      - call: {service: /turtle1/teleport_relative, request: {linear: 2.0, angular: 0.0}}
+      - stops_at: {x: 4, y: 5.5, tolerance: 0.01, heading: 0, heading_tolerance: 0.01}
+      - call: {service: /turtle1/teleport_relative, request: {linear: 0.0, angular: -1.0}}
+      - turns: {angle: -1.0, tolerance: 0.01, drift: 0.01}
+      - stops_at: {heading: -1.0, heading_tolerance: 0.01}
+  - id: saved_ok
+    title: a name /spawn answered, saved and named by later steps
+    text: test
+    packages: [my_robot_controller]
+    world: [turtlesim]
+    steps:
+      - call: {service: /spawn, request: {x: 3, y: 4, theta: 0, name: ""}, save: {spawned: name},
+               expect: {name: {matches: "^turtle[0-9]+$", differs: turtle1}}}
+      - stops_at: {turtle: "${spawned}", x: 3, y: 4, tolerance: 0.01, within: 1}
+      - publishes: {topic: "/${spawned}/pose", type: turtlesim/Pose, node: /turtlesim,
+                    fields: {y: {approx: 4, tolerance: 0.01}}}
+      - call: {service: /kill, request: {name: "${spawned}"}}
+  - id: stops_at_wrong
+    title: a turtle that stops short of the point
+    text: test
+    packages: [my_robot_controller]
+    world: [turtlesim]
+    steps:
+      - teleport: {x: 2, y: 5.5, theta: 0}
+      - call: {service: /turtle1/teleport_relative, request: {linear: 1.0, angular: 0.0}}
+      - stops_at: {x: 4, y: 5.5, tolerance: 0.1}
+  - id: turns_wrong
+    title: a turn that moves the turtle is no turn in place
+    text: test
+    packages: [my_robot_controller]
+    world: [turtlesim]
+    steps:
+      - teleport: {x: 5, y: 5, theta: 0}
+      - call: {service: /turtle1/teleport_relative, request: {linear: 0.5, angular: 1.0}}
+      - turns: {angle: 1.0, drift: 0.05}
+  - id: spawned_outside
+    title: a turtle spawned outside the box appeared there
+    text: test
+    packages: [my_robot_controller]
+    world: [turtlesim]
+    steps:
+      - call: {service: /spawn, request: {x: 1, y: 1, theta: 0, name: far}}
+      - in_bounds: {turtle: far, xmin: 2, xmax: 9, ymin: 2, ymax: 9, for: 1}
+  - id: differs_wrong
+    title: a field compared with a value the same call saved
+    text: test
+    packages: [my_robot_controller]
+    world: [turtlesim]
+    steps:
+      - call: {service: /spawn, request: {x: 5, y: 5, theta: 0, name: twin}, save: {asked: name},
+               expect: {name: {differs: "${asked}"}}}
+
   # -- pkg_tf: turtle_following.launch starts turtlesim, two frame broadcasters and the follower
   - id: tf_ok
     title: start (roslaunch, find), tf_frame, tf_follows
@@ -361,6 +422,8 @@ RUNS = {
     "drawing": (("turtlesim",), ("circle_ok", "circle_wrong_radius", "arc_ok", "arc_wrong_angle", "draws_not_moving",
                                  "out_of_bounds")),
     "square_pen": (("turtlesim",), ("square_ok", "pen_ok", "pen_wrong_colour")),
+    "rest": (("turtlesim",), ("rest_ok", "saved_ok", "stops_at_wrong", "turns_wrong", "spawned_outside",
+                              "differs_wrong")),
     "tf": ((), ("tf_ok", "tf_no_frame", "tf_not_following", "launch_not_started")),
 }
 # milestone -> None (passes) or (the cause it records, a regular expression its reason matches)
@@ -409,6 +472,18 @@ EXPECTED: Dict[str, Optional[Tuple[str, str]]] = {
     "pen_ok": None,
     "pen_wrong_colour": ("wrong_value", r"the pen of turtle1 draws \(0, 0, 255\).* here \(\d+\.\d\d, 9\.00\) after "
                                         r"publishing .*; the text asks \(255, 0, 0\)"),
+    "rest_ok": None,
+    "saved_ok": None,
+    "stops_at_wrong": ("not_moving", r"^turtle1 after calling /turtle1/teleport_relative: it stands at "
+                                     r"\(3\.00, 5\.50\), heading 0\.00 rad: 1\.00 m from \(4, 5\.5\), where the "
+                                     r"text puts it \(within 0\.1 m\)$"),
+    "turns_wrong": ("not_moving", r"^turtle1 after calling /turtle1/teleport_relative: it turned 1\.00 rad left, "
+                                  r"but it moved 0\.50 m from \(5\.00, 5\.00\), at \(5\.27, 5\.42\): a turn in "
+                                  r"place stays within 0\.05 m$"),
+    "spawned_outside": ("wrong_value", r"^far appeared at \(1\.00, 1\.00\) after calling /spawn, outside the box "
+                                       r"x 2\.\.9, y 2\.\.9$"),
+    "differs_wrong": ("wrong_answer", r"/spawn answered \{name: 'twin'\} to .*: name is 'twin', expected a value "
+                                      r"other than 'twin'"),
     "tf_ok": None,
     "tf_no_frame": ("no_frame", r"TF frame turtle1 has the parent world; the text's parent is map"),
     "tf_not_following": ("check_failed", r"TF frame turtle2 came no closer than [0-9.]+ m to turtle1 within 3 s"),

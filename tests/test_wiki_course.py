@@ -10,21 +10,18 @@ root conftest.py), so it overlaps the rest of a suite; the first test that needs
 """
 from __future__ import annotations
 
-import subprocess
 from pathlib import Path
-from typing import Dict, List, Tuple
+from typing import Dict
 
 import pytest
 import yaml
 
 from course_testkit import sample_grading
 from course_testkit.gradings import processes_of
-from course_testkit.sample_grading import BackgroundGrading
+from course_testkit.sample_grading import CourseGrading
 
 ROOT = Path(__file__).resolve().parents[1]
 COURSE = ROOT / "courses" / "ros_wiki_beginner"
-SAMPLES = sorted(p.parent for p in (COURSE / "samples").glob("*/expected.json"))
-SOLUTION = COURSE / "solution"
 MILESTONES = [m["id"] for m in yaml.safe_load((COURSE / "course.yaml").read_text())["milestones"]]
 JOBS = 2
 GRADER_TIMEOUT_S = 1800
@@ -36,27 +33,13 @@ def course_state() -> str:
     return sample_grading.git_state(ROOT, str(COURSE))
 
 
-class WikiGrading(BackgroundGrading):
-    """The grader over every sample and the solution, in the background (output to a file)."""
-
-    def __init__(self) -> None:
-        super().__init__(["--course", str(COURSE), "--only-from", "expected.json", "--jobs", str(JOBS)]
-                         + [str(s) for s in SAMPLES] + [str(SOLUTION)], "grader-wiki-")
-        self.checkout_before = course_state()
-        self.start()
-
-
-GRADING = pytest.StashKey[WikiGrading]()
+GRADING = pytest.StashKey[CourseGrading]()
 
 
 def start_early(config: pytest.Config) -> None:
-    grading = WikiGrading()
+    grading = CourseGrading(ROOT, COURSE, JOBS, "grader-wiki-")
     config.stash[GRADING] = grading
     config.add_cleanup(grading.stop)
-
-
-def expectations() -> List[Tuple[str, str, Dict]]:
-    return sample_grading.expectations(SAMPLES) + [(SOLUTION.name, m, {"passed": True}) for m in MILESTONES]
 
 
 @pytest.fixture(scope="module")
@@ -66,7 +49,8 @@ def graded(request: pytest.FixtureRequest) -> Path:
     return request.config.stash[GRADING].graded(GRADER_TIMEOUT_S)
 
 
-@pytest.mark.parametrize("sample,milestone,expected", expectations(), ids=lambda v: v if isinstance(v, str) else "")
+@pytest.mark.parametrize("sample,milestone,expected", sample_grading.course_expectations(COURSE, MILESTONES),
+                         ids=lambda v: v if isinstance(v, str) else "")
 def test_verdict(graded: Path, sample: str, milestone: str, expected: Dict) -> None:
     """The verdict, its reason and its cause as expected (course_testkit.sample_grading)."""
     problem = sample_grading.verdict_problem(graded, sample, milestone, expected)
@@ -83,12 +67,7 @@ def test_the_course_folder_is_unchanged(request: pytest.FixtureRequest, graded: 
 
 
 def test_every_milestone_has_a_correct_and_a_buggy_sample() -> None:
-    verdicts: Dict[str, set] = {m: set() for m in MILESTONES}
-    for sample, milestone, expected in expectations():
-        if sample != SOLUTION.name:
-            assert milestone in verdicts, "%s names %s, not a milestone of %s" % (sample, milestone, MILESTONES)
-            verdicts[milestone].add(bool(expected["passed"]))
-    assert {m: v for m, v in verdicts.items() if v != {True, False}} == {}
+    assert sample_grading.without_both_samples(COURSE, MILESTONES) == {}
 
 
 def test_the_python_nodes_are_executable_in_git() -> None:
@@ -96,7 +75,4 @@ def test_the_python_nodes_are_executable_in_git() -> None:
     why = sample_grading.not_a_checkout(ROOT)
     if why:
         pytest.skip("git's file modes cannot be read: %s" % why)
-    listed = subprocess.run(["git", "-C", str(ROOT), "ls-files", "-s", "--", str(COURSE)], stdout=subprocess.PIPE,
-                            text=True, check=True).stdout.splitlines()
-    scripts = [line.split("\t", 1) for line in listed if line.endswith(".py")]
-    assert scripts and [path for mode, path in scripts if not mode.startswith("100755")] == []
+    assert sample_grading.not_executable_in_git(ROOT, COURSE) == []

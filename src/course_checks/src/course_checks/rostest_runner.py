@@ -43,12 +43,14 @@ class RostestResult(NamedTuple):
     results_dir: str
 
     def summary(self) -> str:
-        """The reasons in words: one line per failed check, or why there is no verdict."""
+        """The reasons in words: one line per failed check (its message alone: the name of a check's
+        test method, `test_steps`, means nothing to a student; the name when there is no message),
+        or why there is no verdict."""
         if self.timed_out:
             lines = ["the milestone did not finish within its time limit of %.0f s" % self.elapsed]
         else:
             lines = []
-        lines += ["%s: %s" % (name, message) if message else name for name, message in self.failures]
+        lines += [message or name for name, message in self.failures]
         if not lines and not self.passed:
             said = [line for line in self.output.splitlines() if line.strip()][-SUMMARY_OUTPUT_LINES:]
             lines.append("rostest %s (exit code %s)%s" % (

@@ -48,4 +48,6 @@ def test_summary_words():
     result = RostestResult(False, 0, [], None, "", 1.0, False, 1, "/tmp/x")
     assert "no test result" in result.summary()
     result = RostestResult(False, 2, [("test_b", "no /chatter_talk")], None, "", 1.0, False, 1, "/tmp/x")
-    assert result.summary() == "test_b: no /chatter_talk"
+    assert result.summary() == "no /chatter_talk"  # the check's sentence, not its test method's name
+    result = RostestResult(False, 2, [("test_b", "")], None, "", 1.0, False, 1, "/tmp/x")
+    assert result.summary() == "test_b"

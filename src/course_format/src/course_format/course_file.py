@@ -18,7 +18,7 @@ import yaml
 
 from course_format import causes
 from course_format.milestone import Equivalent, Milestone, Step
-from course_format import schema
+from course_format import saved, schema
 
 COURSE_FILE = "course.yaml"
 BUILTIN = "robotics_labs"
@@ -288,6 +288,7 @@ def _check_file(check: _Checker, path: Path, name: str, root: str) -> str:
 def _steps(check: _Checker, path: Path, items: List[Any], shown: str) -> Tuple[Step, ...]:
     steps: List[Step] = []
     names: List[str] = []  # what start steps make known, for later steps' `node`
+    kept: List[str] = []  # what steps saved (`call`'s save), for later steps' ${NAME}
     for i, item in enumerate(items):
         here = path + (i,)
         if not isinstance(item, dict) or len(item) != 1:
@@ -306,10 +307,33 @@ def _steps(check: _Checker, path: Path, items: List[Any], shown: str) -> Tuple[S
             continue
         before = len(check.problems)
         filled = _params(check, here + (name,), primitive, params, names)
+        _references(check, here + (name,), filled, kept)
         if len(check.problems) == before:
             where = "%s:%d (%s)" % (shown, check.lines.of(here), field_name(here))
             steps.append(Step(name, filled, where))
     return tuple(steps)
+
+
+def _references(check: _Checker, path: Path, params: Dict[str, Any], kept: List[str]) -> None:
+    """Every ${NAME} names a value a step before this one saved (a call's `expect`, also one this call
+    saves); a call's `save` is NAME: FIELD, its names added to `kept` for the steps after it."""
+    own = params.get("save") if isinstance(params.get("save"), dict) else {}
+    for key, value in own.items():
+        if not isinstance(key, str) or not saved.NAME.fullmatch(key):
+            check.error(path + ("save", key), "%r: a saved value's name is letters, digits and _, not a digit first"
+                        % (key,))
+        elif not isinstance(value, str) or not value:
+            check.error(path + ("save", key), "expected the answer's field (name2, pose.x), got %r" % (value,))
+    for key, value in params.items():
+        if key == "save":
+            continue
+        known = kept + [k for k in own if isinstance(k, str)] if key == "expect" else kept
+        for name in saved.references(value):
+            if name not in known:
+                close = [k for k in known if _close(name, k)]
+                check.error(path + (key,), "${%s}: no step before this one saves a value of that name%s (saved: %s)"
+                            % (name, " (did you mean %s?)" % close[0] if close else "", ", ".join(known) or "none"))
+    kept.extend(k for k in own if isinstance(k, str) and k not in kept)
 
 
 def _params(check: _Checker, path: Path, primitive: schema.Primitive, params: Dict[Any, Any],
@@ -396,6 +420,8 @@ def _semantics(check: _Checker, path: Path, name: str, params: Dict[str, Any], n
                 check.error(path + (key, j), "%r: a type is PKG/Name" % (kind,))
     if name in DRAWING_PARAMS:
         _drawing(check, path, name, params)
+    if name in REST_STEPS:
+        _rest(check, path, name, params)
 
 
 # The drawing steps' parameters that a shape takes (the others it does not), and their ranges.
@@ -436,6 +462,28 @@ def _drawing(check: _Checker, path: Path, name: str, params: Dict[str, Any]) -> 
             check.error(path + (key,), "%r: a colour channel is 0-255" % (numbers[key],))
 
 
+# The steps that judge a turtle at rest, and their parameters that are 0 or more (`still`: above 0).
+REST_STEPS = {"stops_at": ("tolerance", "heading_tolerance", "still", "within"),
+              "turns": ("tolerance", "drift", "still", "within")}
+
+
+def _rest(check: _Checker, path: Path, name: str, params: Dict[str, Any]) -> None:
+    """stops_at names a point (x and y), a heading, or both; turns an angle other than 0; their
+    tolerances are 0 or more, and `still` more than 0 s."""
+    numbers = {k: v for k, v in params.items() if isinstance(v, (int, float)) and not isinstance(v, bool)}
+    for key in REST_STEPS[name]:
+        value = numbers.get(key)
+        if value is not None and (value < 0 or value == 0 and key == "still"):
+            check.error(path + (key,), "%r: expected a number %s 0" % (value, "above" if key == "still" else "from"))
+    if name == "stops_at":
+        if (params.get("x") is None) != (params.get("y") is None):
+            check.error(path + ("y" if params.get("y") is None else "x",), "missing: a point is x and y")
+        elif params.get("x") is None and params.get("heading") is None:
+            check.error(path, "give the point it stops at (x, y), its heading, or both")
+    if name == "turns" and numbers.get("angle") == 0:
+        check.error(path + ("angle",), "0: a turn is by an angle other than 0 rad (left positive)")
+
+
 def _regex(check: _Checker, path: Path, pattern: str) -> None:
     try:
         re.compile(pattern)
@@ -445,8 +493,8 @@ def _regex(check: _Checker, path: Path, pattern: str) -> None:
 
 def _predicate(check: _Checker, path: Path, predicate: Any) -> None:
     if not isinstance(predicate, dict) or not predicate:
-        check.error(path, "expected a predicate: {equals: V}, {approx: V, tolerance: T}, {matches: REGEX}, "
-                          "{between: [LO, HI]} or {nonempty: true}; got %r" % (predicate,))
+        check.error(path, "expected a predicate: {equals: V}, {differs: V}, {approx: V, tolerance: T}, "
+                          "{matches: REGEX}, {between: [LO, HI]} or {nonempty: true}; got %r" % (predicate,))
         return
     check.unknown_keys(path, predicate, schema.PREDICATE_KEYS)
     if "tolerance" in predicate and "approx" not in predicate:

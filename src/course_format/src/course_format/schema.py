@@ -17,8 +17,8 @@ from typing import Any, Dict, NamedTuple, Tuple
 # value kinds a parameter may take
 STR, NUMBER, INT, BOOL, LIST, MAP, ANY = "str", "number", "int", "bool", "list", "map", "any"
 # a predicate on a value (a message field, a parameter, a service response field):
-# {equals: V} {approx: V, tolerance: T} {matches: REGEX} {between: [LO, HI]} {nonempty: true}
-PREDICATE_KEYS = ("equals", "approx", "tolerance", "matches", "between", "nonempty")
+# {equals: V} {differs: V} {approx: V, tolerance: T} {matches: REGEX} {between: [LO, HI]} {nonempty: true}
+PREDICATE_KEYS = ("equals", "differs", "approx", "tolerance", "matches", "between", "nonempty")
 
 
 class Param(NamedTuple):
@@ -44,6 +44,7 @@ NODE = Param("node", STR, doc="the student's node: a `start` step's `as` name, o
 WITHIN = Param("within", NUMBER, default=15.0, doc="seconds to wait for it")
 TURTLE = Param("turtle", STR, default="turtle1", doc="a turtle of the course's turtlesim")
 CANVAS_M = 11.088889  # turtlesim's canvas, m (turtlesim.constants.WORLD_SIZE)
+STILL = Param("still", NUMBER, default=0.5, doc="seconds without moving or turning that count as at rest")
 
 _PRIMITIVES = (
     Primitive("start", True, (
@@ -72,6 +73,8 @@ _PRIMITIVES = (
         Param("service", STR, True),
         Param("request", MAP, default={}, doc="request field -> value"),
         Param("expect", MAP, default={}, doc="response field -> predicate"),
+        Param("save", MAP, default={}, doc="NAME -> response field: the answer's value, which this step's "
+                                           "`expect` and later steps name as ${NAME}"),
         WITHIN,
     ), "call a service (the student's) and check its answer"),
     Primitive("publish", True, (
@@ -137,6 +140,27 @@ _PRIMITIVES = (
         Param("tolerance", INT, default=10, doc="per channel"),
         Param("within", NUMBER, default=5.0, doc="seconds to see the colour"),
     ), "the turtle's pen draws this colour where it is (the course's turtlesim's /TURTLE/color_sensor)"),
+    Primitive("stops_at", False, (
+        TURTLE,
+        Param("x", NUMBER, doc="m: the point it stops at (with y; default: any place)"),
+        Param("y", NUMBER, doc="m"),
+        Param("tolerance", NUMBER, default=0.1, doc="m: how far from (x, y) it may stop"),
+        Param("heading", NUMBER, doc="rad: the heading it stops with (0 along x, pi/2 along y; default: any)"),
+        Param("heading_tolerance", NUMBER, default=0.05, doc="rad"),
+        STILL,
+        Param("within", NUMBER, default=20.0, doc="seconds for it to move and come to rest; a turtle that does not "
+                                                  "move is judged where it stands then"),
+    ), "where a turtle comes to rest after the last action: its distance to a point, its heading"),
+    Primitive("turns", False, (
+        TURTLE,
+        Param("angle", NUMBER, True, doc="rad: the heading's change, left (counter-clockwise) positive; past pi "
+                                         "counts (summed pose by pose)"),
+        Param("either_way", BOOL, default=False, doc="true: |angle| to the left or to the right"),
+        Param("tolerance", NUMBER, default=0.05, doc="rad"),
+        Param("drift", NUMBER, default=0.05, doc="m: how far its position may move while it turns (in place)"),
+        STILL,
+        Param("within", NUMBER, default=20.0, doc="seconds for it to turn and come to rest"),
+    ), "a turtle turns in place by an angle, judged once it comes to rest after the last action"),
 )
 # Every check may name the cause its failure is grouped under (the class view's groups), when it
 # fails at what it checks: `prints` after a `set_param` fails as param_ignored. A failure that says

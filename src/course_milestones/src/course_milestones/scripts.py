@@ -4,7 +4,8 @@ One detector for the whole course: the checks append its sentences to a failure 
 running `rostest` alone sees them) and the grader adds the ones a check did not already say.
 The mistakes real students make most, each found from their files (`script_problems`) or from
 what their process printed (`output_problems`), never guessed from the milestone:
-- a `#!` script handed in without its executable bit (the texts' `chmod +x` step);
+- a `#!` script handed in without its executable bit (the texts' `chmod +x` step), unless
+  `catkin_install_python` lists it: catkin's devel space relays it then, and rosrun starts it;
 - a `#!` line saved with Windows line endings (`/usr/bin/env: 'python3\r'`);
 - an executable Python script with no `#!` line at all: rosrun runs it with `sh`, which
   prints `import: not found` and `Syntax error: "(" unexpected`;
@@ -21,7 +22,7 @@ from __future__ import annotations
 
 import os
 import re
-from typing import Iterator, List, Tuple
+from typing import Iterator, List, Set, Tuple
 
 from course_format import causes
 
@@ -90,12 +91,34 @@ def node_folders(root: str) -> Iterator[Tuple[str, List[str]]]:
         yield folder, sorted(files)
 
 
+# catkin_install_python(PROGRAMS a.py b.py DESTINATION ...) in a CMakeLists.txt (comments removed first)
+_INSTALL_PYTHON = re.compile(r"\bcatkin_install_python\s*\(\s*PROGRAMS\b(.*?)(?:\bDESTINATION\b|\))",
+                             re.DOTALL | re.IGNORECASE)
+_SOURCE_DIR = re.compile(r"^\$\{(?:CMAKE_CURRENT_SOURCE_DIR|PROJECT_SOURCE_DIR)\}/")
+
+
+def relayed_scripts(package_dir: str) -> Set[str]:
+    """The scripts the package's CMakeLists.txt lists in catkin_install_python, as paths from the
+    package's folder. catkin's devel space makes a relay for each (devel/lib/PKG/NAME, executable,
+    running the source file), and its install space installs each executable: rosrun starts them
+    with or without their own executable bit."""
+    try:
+        with open(os.path.join(package_dir, "CMakeLists.txt"), errors="replace") as f:
+            text = re.sub(r"#[^\n]*", "", f.read(MAX_SCRIPT_BYTES))
+    except OSError:
+        return set()
+    words = [w.strip('"') for m in _INSTALL_PYTHON.finditer(text) for w in m.group(1).split()]
+    return {os.path.normpath(_SOURCE_DIR.sub("", w)) for w in words if w and "${" not in _SOURCE_DIR.sub("", w)}
+
+
 def script_problems(package_dir: str) -> List[str]:
-    """One sentence per problem: a #! line without the executable bit, a #! line ending in a
-    carriage return, an executable .py file without a #! line, Python 2 that Python 3 cannot
-    compile, in the folders where the checks look for nodes (node_folders). Paths are given from
-    the package's name down (chatter/scripts/talker.py)."""
+    """One sentence per problem: a #! line without the executable bit (unless catkin_install_python
+    lists the script: relayed_scripts), a #! line ending in a carriage return, an executable .py
+    file without a #! line, Python 2 that Python 3 cannot compile, in the folders where the checks
+    look for nodes (node_folders). Paths are given from the package's name down
+    (chatter/scripts/talker.py)."""
     problems = []
+    relayed = relayed_scripts(package_dir)
     for folder, files in node_folders(package_dir):
         for name in files:
             path = os.path.join(folder, name)
@@ -109,7 +132,7 @@ def script_problems(package_dir: str) -> List[str]:
                     problems.append(causes.finding("no_shebang", NO_SHEBANG % rel))
             if not first.startswith(b"#!"):
                 continue
-            if not os.access(path, os.X_OK):
+            if not os.access(path, os.X_OK) and os.path.relpath(path, package_dir) not in relayed:
                 problems.append(causes.finding(
                     "not_executable", "%s starts with #! but is not executable, so rosrun cannot start it "
                                       "(chmod +x %s, and keep the bit in what you hand in)" % (rel, name)))

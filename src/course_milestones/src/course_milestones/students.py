@@ -260,11 +260,13 @@ def hinted_first(paths: Sequence[str], hint: str) -> List[str]:
 
 
 def start_registering(pkg: str, args: Sequence[str], wanted: Callable[[Registration], bool], hint: str = "",
-                      log_name: str = "node", timeout: float = REGISTER_TIMEOUT,
+                      log_name: str = "node", timeout: float = REGISTER_TIMEOUT, keep_exited: bool = False,
                       ) -> Tuple[Optional[Registered], List[str]]:
     """Start each executable of `pkg` with `args`, on a pseudo-terminal, until one registers a node
     that satisfies `wanted`; executables whose name matches `hint` go first. Returns it (still
-    running) and, for the failure message, what each other executable did."""
+    running) and, for the failure message, what each other executable did. With `keep_exited`, one
+    that registered it (the master's log says so) and exited before it was seen is returned too,
+    exited, as if it had been seen before it exited: when it exits is then no matter of timing."""
     tried: List[str] = []
     history = master_log.History()
     for path in hinted_first(list_executables(pkg), hint):
@@ -274,6 +276,9 @@ def start_registering(pkg: str, args: Sequence[str], wanted: Callable[[Registrat
         if found is not None:
             return Registered(path, keyboard, found), tried
         earlier = [r for node, r in master_log.ever_registered(history.since()).items() if node not in before]
+        did = [r for r in earlier if wanted(r)]
+        if keep_exited and did and not keyboard.node.running():
+            return Registered(path, keyboard, did[0]), tried
         tried.append(describe_attempt(os.path.basename(path), keyboard, seen, earlier, wanted))
         keyboard.stop()
     return None, tried

@@ -54,3 +54,22 @@ def test_what_the_process_printed_names_its_cause():
     assert [causes.of(s) for s in said] == ["no_shebang", "python2", "python2", "python2"]
     assert "write #!/usr/bin/env python3" in said[1] and "write input(...)" in said[2] and "//" in said[3]
     assert output_problems("all fine\n") == []
+
+
+def test_a_script_catkin_install_python_lists_needs_no_executable_bit(tmp_path):
+    """catkin's devel space relays each script catkin_install_python lists (devel/lib/PKG/NAME, an
+    executable running the source): rosrun starts it without chmod +x, so it is no problem."""
+    pkg = tmp_path / "chatter"
+    (pkg / "scripts").mkdir(parents=True)
+    (pkg / "nodes").mkdir()
+    for name in ("scripts/talker.py", "scripts/listener.py", "nodes/relay.py", "scripts/left_out.py"):
+        (pkg / name).write_text("#!/usr/bin/env python3\nprint(1)\n")
+    (pkg / "CMakeLists.txt").write_text(
+        "cmake_minimum_required(VERSION 3.0.2)\nproject(chatter)\n"
+        "# catkin_install_python(PROGRAMS scripts/left_out.py DESTINATION x)  (a comment)\n"
+        "catkin_install_python(PROGRAMS\n  scripts/talker.py \"scripts/listener.py\"\n"
+        "  ${CMAKE_CURRENT_SOURCE_DIR}/nodes/relay.py\n  DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})\n")
+    problems = script_problems(str(pkg))
+    assert len(problems) == 1 and "chatter/scripts/left_out.py starts with #! but is not executable" in problems[0]
+    (pkg / "CMakeLists.txt").write_text("catkin_install_python(PROGRAMS scripts/talker.py)\n")  # no DESTINATION
+    assert len(script_problems(str(pkg))) == 3

@@ -78,3 +78,58 @@ def test_a_steps_own_cause_does_not_hide_an_exit():
     finding = run.run_step(state, "prints", {"node": "listener", "pattern": "x", "within": 0, "cause": "wrong_value"},
                            "course.yaml:1")
     assert causes.of(finding) == "exited_early"
+
+
+# -- a crash is the cause, whenever it came ---------------------------------------------------------------
+
+def test_a_check_failing_after_a_started_process_crashed_says_the_crash_first():
+    state = StepState()
+    driver = started(state, "driver")
+    driver.text = "Traceback ...\nTypeError: expected Twist\n"
+    started(state)  # the listener runs on and prints nothing
+    driver.exit(1)
+    finding = prints(state, "I heard")
+    assert causes.of(finding) == "exited_early"
+    assert finding.startswith("`rosrun pkg driver.py` exited with status 1, its output ending with ")
+    assert "TypeError: expected Twist" in finding and "; so: `rosrun pkg listener.py` printed no line" in finding
+
+
+def test_a_crash_after_the_check_saw_the_node_work_is_node_exited_and_a_clean_exit_no_cause():
+    state = StepState()
+    driver = started(state, "driver")
+    driver.text = "driving\n"
+    assert prints(state, "driving", node="driver") is None
+    started(state)
+    driver.exit(0)  # a client or a driver that ran to its end: not a crash
+    assert causes.of(prints(state, "I heard")) == "not_printed"
+    driver.exit(139)
+    assert causes.of(prints(state, "I heard")) == "node_exited"
+
+
+def test_a_failure_that_says_its_node_is_gone_is_not_said_twice():
+    state = StepState()
+    started(state).exit(2)
+    finding = prints(state, "I heard")
+    assert causes.of(finding) == "exited_early" and finding.count("exited with status 2") == 1
+
+
+# -- saved values, named ${NAME} ------------------------------------------------------------------------
+
+def test_a_step_names_what_an_earlier_step_saved_and_a_pattern_matches_it_literally():
+    state = StepState()
+    node = started(state)
+    state.saved["spawned"] = "turtle.2"
+    node.text = "killed turtle.2\n"
+    assert prints(state, "^killed ${spawned}$") is None
+    node.text = "killed turtleX2\n"
+    state.output_marks = {}
+    assert causes.of(prints(state, "^killed ${spawned}$")) == "not_printed"  # the dot is no wildcard
+
+
+def test_a_name_nothing_saved_is_a_course_file_error():
+    state = StepState()
+    started(state)
+    finding = prints(state, "${nobody}")
+    assert causes.of(finding) == "check_failed"
+    assert finding.startswith("course file error at course.yaml:1: prints names ${nobody}, which no step before it "
+                              "saved (saved: none)")

@@ -27,6 +27,8 @@ PREDICATES = st.dictionaries(st.sampled_from(schema.PREDICATE_KEYS + ("other",))
 @pytest.mark.parametrize("predicate, value", [
     ({"equals": "hello"}, "hello"),
     ({"equals": 42}, 42),
+    ({"differs": "turtle2"}, "turtle3"),
+    ({"differs": 0, "nonempty": True}, "x"),
     ({"approx": 1.0}, 1.0005),
     ({"approx": 1.0, "tolerance": 0.5}, 1.4),
     ({"matches": "^hello world [0-9.]+$"}, "hello world 12.5"),
@@ -43,6 +45,7 @@ def test_a_predicate_holds(predicate, value):
 
 @pytest.mark.parametrize("predicate, value, words", [
     ({"equals": "hello"}, "bye", "expected 'hello'"),
+    ({"differs": "turtle2"}, "turtle2", "expected a value other than 'turtle2'"),
     ({"approx": 1.0}, 1.1, "expected 1 (within 0.001)"),
     ({"approx": 1.0}, "1.0", "not a number"),
     ({"matches": "^hello"}, "say hello", "match '^hello'"),

@@ -1,6 +1,7 @@
 """A class of sample submissions graded in the background, and each verdict compared with the
 sample's expected.json, for every course's sample tests (tests/test_grader_samples.py for the
-built-in course, tests/test_wiki_course.py for courses/ros_wiki_beginner).
+built-in course; tests/test_wiki_course.py and tests/test_turtle_motions_course.py, through
+CourseGrading, for courses/ros_wiki_beginner and courses/turtle_motions).
 
 expected.json: {"<milestone>": {"passed": true}} or {"<milestone>": {"passed": false,
 "reason": "<regex>", "cause": "<key>"}}: the regex must match (re.search, re.S) the milestone's
@@ -20,6 +21,7 @@ from typing import Dict, List, Optional, Sequence, Tuple
 
 from course_checks.nodes import NodeProcess
 from course_checks.gitignore import not_ignored_files
+from course_testkit.samples import materialise
 
 STOP_TIMEOUT_S = 30.0
 MESSAGE_CHARS = 2500
@@ -57,6 +59,57 @@ class BackgroundGrading:
         its folder."""
         self.grader.stop(STOP_TIMEOUT_S)
         shutil.rmtree(self.folder, ignore_errors=True)
+
+
+class CourseGrading(BackgroundGrading):
+    """One grader run over a course folder's samples, as handed in (a derived one made from its
+    derive.json: course_testkit.samples), each graded on the milestones its expected.json names, and
+    over its reference solution, graded as a submission on every milestone."""
+
+    def __init__(self, root: Path, course: Path, jobs: int, prefix: str) -> None:
+        super().__init__([], prefix)
+        self.course = course
+        self.samples = course_samples(course)
+        self.checkout_before = git_state(root, str(course))
+        handed_in = [materialise(s, self.folder / "derived") for s in self.samples]
+        self.args = ["--course", str(course), "--only-from", "expected.json", "--jobs", str(jobs)] + [
+            str(s) for s in handed_in] + [str(course / "solution")]
+        self.start()
+
+
+def course_samples(course: Path) -> List[Path]:
+    """The sample folders of a course folder (those with an expected.json)."""
+    return sorted(p.parent for p in (course / "samples").glob("*/expected.json"))
+
+
+def course_expectations(course: Path, milestones: Sequence[str]) -> List[Tuple[str, str, Dict]]:
+    """(sample, milestone, expected) of every sample of the course, then the reference solution's
+    (`solution`): every milestone passes."""
+    return expectations(course_samples(course)) + [("solution", m, {"passed": True}) for m in milestones]
+
+
+def without_both_samples(course: Path, milestones: Sequence[str]) -> Dict[str, object]:
+    """The milestones that lack a correct or a buggy sample (each with the verdicts its samples
+    expect), and any name a sample expects that is no milestone ({} when each has both)."""
+    verdicts: Dict[str, set] = {m: set() for m in milestones}
+    wrong: Dict[str, object] = {}
+    for sample, milestone, expected in expectations(course_samples(course)):
+        if milestone not in verdicts:
+            wrong["%s names %s" % (sample, milestone)] = "not a milestone of %s" % ", ".join(milestones)
+        else:
+            verdicts[milestone].add(bool(expected["passed"]))
+    wrong.update({m: v for m, v in verdicts.items() if v != {True, False}})
+    return wrong
+
+
+def not_executable_in_git(root: Path, folder: Path) -> List[str]:
+    """The Python files under `folder` that git does not keep executable (rosrun finds a node
+    without its bit only through catkin_install_python's relay); ["no Python file"] when git holds
+    none. The caller skips where `root` is no checkout (not_a_checkout)."""
+    listed = subprocess.run(["git", "-C", str(root), "ls-files", "-s", "--", str(folder)], stdout=subprocess.PIPE,
+                            text=True, check=True).stdout.splitlines()
+    scripts = [line.split("\t", 1) for line in listed if line.endswith(".py")]
+    return [path for mode, path in scripts if not mode.startswith("100755")] if scripts else ["no Python file"]
 
 
 def not_a_checkout(root: Path) -> str:

@@ -29,7 +29,7 @@ def poses_since_action(state: StepState, turtle: str) -> Callable[[], List[shape
     return lambda: [(m.x, m.y, m.theta) for m in recorder.messages[mark:]]
 
 
-def _no_pose(turtle: str) -> Exception:
+def no_pose(turtle: str) -> Exception:
     return failed("not_moving", "no pose of %s (/%s/pose): is turtlesim running, with a turtle of that name?"
                   % (turtle, turtle))
 
@@ -40,7 +40,7 @@ def draws(state: StepState, p: Dict, where: str) -> None:
         raise course_error(where, "shape %r: one of %s (an arc with its angle)" % (shape, ", ".join(shapes.SHAPES)))
     since = poses_since_action(state, turtle)
     if not since():
-        raise _no_pose(turtle)
+        raise no_pose(turtle)
     numbers = {k: (float(p[k]) if p.get(k) is not None else None) for k in ("radius", "angle", "side")}
     tolerance = float(p.get("tolerance") or 0.0)
 
@@ -60,9 +60,10 @@ def in_bounds(state: StepState, p: Dict, where: str) -> None:
     box = shapes.Box(*(float(p[k]) for k in ("xmin", "xmax", "ymin", "ymax")))
     if box.xmin >= box.xmax or box.ymin >= box.ymax:
         raise course_error(where, "an empty box: x %g..%g, y %g..%g" % box)
+    appeared = turtle not in state.pose_marks  # no turtle of that name at the last action: spawned since
     since = poses_since_action(state, turtle)
     if not since():
-        raise _no_pose(turtle)
+        raise no_pose(turtle)
     left = state.action_time + float(p.get("for") or 0.0) - time.monotonic()
     wait_for(lambda: shapes.first_outside(since(), box) is not None, max(left, 0.0), POLL_S)
     poses = since()
@@ -70,8 +71,22 @@ def in_bounds(state: StepState, p: Dict, where: str) -> None:
     if index is None:
         return
     x, y, _ = poses[index]
-    raise failed("wrong_value", "%s left the box x %g..%g, y %g..%g at (%.2f, %.2f), about %.1f s %s" % (
-        (turtle,) + tuple(box) + (x, y, index * TICK, state.after_action())))
+    raise failed("wrong_value", outside_words(turtle, box, (x, y), index, appeared, state.last_action))
+
+
+def outside_words(turtle: str, box: shapes.Box, place: shapes.Point, index: int, appeared: bool,
+                  action: str) -> str:
+    """The first pose outside the box in words: where the turtle was (it appeared there after the
+    action, or stood there as it began) when that is its first pose judged, else when it left."""
+    where = "the box x %g..%g, y %g..%g" % tuple(box)
+    action = action or "the last action"
+    if index == 0 and appeared:
+        return "%s appeared at (%.2f, %.2f) after %s, outside %s" % ((turtle,) + tuple(place) + (action, where))
+    if index == 0:
+        return "%s was already at (%.2f, %.2f) when %s began, outside %s" % ((turtle,) + tuple(place) +
+                                                                               (action, where))
+    return "%s left %s at (%.2f, %.2f), about %.1f s after %s" % (
+        (turtle, where) + tuple(place) + (index * TICK, "it appeared (after %s)" % action if appeared else action))
 
 
 def pen_colour(state: StepState, p: Dict, where: str) -> None:

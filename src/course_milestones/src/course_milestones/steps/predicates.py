@@ -1,7 +1,7 @@
 """The pure logic of a course file's checks, apart from ROS: predicates on values, field paths into
 messages, a publisher's rate from arrival times, and a message in one line for a failure's text.
 
-A course file's predicate (`{equals: V}`, `{approx: V, tolerance: T}`, `{matches: REGEX}`,
+A course file's predicate (`{equals: V}`, `{differs: V}`, `{approx: V, tolerance: T}`, `{matches: REGEX}`,
 `{between: [LO, HI]}`, `{nonempty: true}`; several keys in one mapping must all hold) is data a
 TA wrote, and the value it is applied to is whatever a student's node sent. So `holds` never
 raises: a predicate that cannot hold on a value says why in its Verdict, and `problem` tells a
@@ -47,10 +47,10 @@ def _is_number(value: object) -> bool:
 def problem(predicate: object) -> Optional[str]:
     """What is wrong with a course file's predicate, or None when it can be applied."""
     if not isinstance(predicate, Mapping) or not predicate:
-        return "a predicate is a mapping such as {equals: V}, {approx: V, tolerance: T}, {matches: REGEX}, " \
-               "{between: [LO, HI]} or {nonempty: true}, not %s" % _short(repr(predicate), 80)
-    unknown = [str(k) for k in predicate if k not in ("equals", "approx", "tolerance", "matches", "between",
-                                                      "nonempty")]
+        return "a predicate is a mapping such as {equals: V}, {differs: V}, {approx: V, tolerance: T}, " \
+               "{matches: REGEX}, {between: [LO, HI]} or {nonempty: true}, not %s" % _short(repr(predicate), 80)
+    unknown = [str(k) for k in predicate if k not in ("equals", "differs", "approx", "tolerance", "matches",
+                                                      "between", "nonempty")]
     if unknown:
         return "unknown predicate key %s" % ", ".join(unknown)
     if "tolerance" in predicate and "approx" not in predicate:
@@ -83,7 +83,7 @@ def holds(predicate: object, value: Any) -> Verdict:
     shown = describe(value, 120)
     if wrong:
         return Verdict(False, "%s cannot be judged: %s" % (shown, wrong))
-    for test in (_equals, _approx, _matches, _between, _nonempty):
+    for test in (_equals, _differs, _approx, _matches, _between, _nonempty):
         failed = test(predicate, value)
         if failed:
             return Verdict(False, "is %s, %s" % (shown, failed))
@@ -95,6 +95,8 @@ def expectation(predicate: Mapping) -> str:
     words = []
     if "equals" in predicate:
         words.append("equal to %s" % describe(predicate["equals"], 80))
+    if "differs" in predicate:
+        words.append("other than %s" % describe(predicate["differs"], 80))
     if "approx" in predicate:
         words.append("within %s of %s" % (_num(predicate.get("tolerance", DEFAULT_TOLERANCE)), _num(predicate["approx"])))
     if "matches" in predicate:
@@ -106,15 +108,23 @@ def expectation(predicate: Mapping) -> str:
     return " and ".join(words)
 
 
-def _equals(predicate: Mapping, value: Any) -> str:
-    if "equals" not in predicate:
-        return ""
-    wanted = predicate["equals"]
+def _same(value: Any, other: Any) -> bool:
     try:
-        same = bool(value == wanted)
+        return bool(value == other)
     except Exception:  # noqa: BLE001 - a value whose == raises is not equal
-        same = False
-    return "" if same else "expected %s" % describe(wanted, 80)
+        return False
+
+
+def _equals(predicate: Mapping, value: Any) -> str:
+    if "equals" not in predicate or _same(value, predicate["equals"]):
+        return ""
+    return "expected %s" % describe(predicate["equals"], 80)
+
+
+def _differs(predicate: Mapping, value: Any) -> str:
+    if "differs" not in predicate or not _same(value, predicate["differs"]):
+        return ""
+    return "expected a value other than %s" % describe(predicate["differs"], 80)
 
 
 def _approx(predicate: Mapping, value: Any) -> str:

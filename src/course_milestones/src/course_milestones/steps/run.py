@@ -11,9 +11,11 @@ from __future__ import annotations
 
 from typing import Callable, Dict, Optional, Sequence
 
-from course_format import causes, schema
-from course_milestones.steps import built, drawing, frames, params, services, starting, terminal, topics, turtles
-from course_milestones.steps.state import StepFailed, StepState, course_error
+from course_format import causes, saved, schema
+from course_milestones import students
+from course_milestones.steps import (built, drawing, frames, params, rest, services, starting, terminal, topics,
+                                     turtles)
+from course_milestones.steps.state import Started, StepFailed, StepState, course_error
 
 Primitive = Callable[[StepState, Dict, str], None]
 # Causes a step's own `cause` does not replace: the node is gone, or the check itself is at fault.
@@ -45,7 +47,12 @@ RUNNERS: Dict[str, Primitive] = {
     "draws": drawing.draws,
     "in_bounds": drawing.in_bounds,
     "pen_colour": drawing.pen_colour,
+    "stops_at": rest.stops_at,
+    "turns": rest.turns,
 }
+# Parameters resolved by their step itself, not before it runs: a call's `expect` may name what the
+# call saves (course_format.saved).
+RESOLVED_LATER = {"call": ("expect",)}
 
 
 def new_state(packages: Sequence[str] = (), package: str = "") -> StepState:
@@ -61,17 +68,45 @@ def with_defaults(primitive: str, given: Dict) -> Dict:
     return {**{p.name: p.default for p in schema.PRIMITIVES[primitive].params}, **dict(given or {})}
 
 
+def crashed(state: StepState) -> Optional[Started]:
+    """The first started process that exited with a status other than 0 (a crash: a client that
+    ran to its end exits with 0, and a process a step ends is no longer among the started)."""
+    for started in state.started.values():
+        node = started.process.node
+        if not node.running() and node.proc.returncode not in (0, None):
+            return started
+    return None
+
+
+def with_crash(state: StepState, finding: str) -> str:
+    """A check's failure told from its cause: a started process that crashed comes first, whenever
+    the crash came (before the check looked, or while it waited), and the failure is its exit's
+    (course_format.causes.exited); a failure that already says a node is gone keeps its words."""
+    gone = crashed(state)
+    if gone is None or causes.of(finding) in KEEPS_OWN_CAUSE:
+        return finding
+    return causes.finding(state.exit_cause(gone), "`%s` exited with status %s%s; so: %s" % (
+        gone.command, gone.process.node.proc.returncode, students.last_words(gone.process), finding))
+
+
 def run_step(state: StepState, primitive: str, given: Dict, where: str) -> Optional[str]:
     """Run one step; its failure's finding (a causes.Finding), or None when it passed."""
     if primitive not in RUNNERS:
         return course_error(where, "unknown primitive %r (known: %s)" % (primitive, ", ".join(RUNNERS))).finding
     try:
-        RUNNERS[primitive](state, with_defaults(primitive, given), where)
+        resolved = saved.resolve_step(primitive, with_defaults(primitive, given), state.saved,
+                                      RESOLVED_LATER.get(primitive, ()))
+    except saved.Unknown as err:
+        return course_error(where, "%s names %s, which no step before it saved (saved: %s)" % (
+            primitive, err, ", ".join(sorted(state.saved)) or "none")).finding
+    try:
+        RUNNERS[primitive](state, resolved, where)
     except StepFailed as failure:
+        finding = with_crash(state, failure.finding)
         own = (given or {}).get("cause")
-        if own and causes.of(failure.finding) not in KEEPS_OWN_CAUSE and own in causes.BY_KEY:
-            return causes.finding(own, failure.finding)
-        return failure.finding
+        if own and causes.of(finding) not in KEEPS_OWN_CAUSE and own in causes.BY_KEY:
+            return causes.finding(own, finding)
+        return finding
     except Exception as err:  # noqa: BLE001 - the check's own fault: said, with the step, not as a traceback
         return causes.finding("grader_error", "the check failed on the step at %s (%s): %s: %s" % (
             where, primitive, type(err).__name__, err))

@@ -1,5 +1,6 @@
 """The service steps: `advertises` (the student's node offers a service, of a type, seen at the
-master) and `call` (the check calls it with the text's request and judges the answer's fields)."""
+master) and `call` (the check calls it with the text's request, keeps the answer's fields it is
+told to save for later steps, and judges the answer's fields)."""
 from __future__ import annotations
 
 import threading
@@ -9,6 +10,7 @@ import genpy
 import rosservice
 import rospy
 
+from course_format import saved
 from course_milestones.discovery import own_names
 from course_milestones.steps import predicates
 from course_milestones.steps.state import StepState, course_error, failed
@@ -46,11 +48,16 @@ def advertises(state: StepState, p: Dict, where: str) -> None:
 
 
 def call(state: StepState, p: Dict, where: str) -> None:
+    """Its `expect` may name what this call saves (${NAME}): it is resolved once the answer is in."""
     service, within = p["service"], float(p.get("within") or 0)
     for name, predicate in (p.get("expect") or {}).items():
-        wrong = predicates.problem(predicate)
+        wrong = None if saved.references(predicate) else predicates.problem(predicate)
         if wrong:
             raise course_error(where, "expect.%s: %s" % (name, wrong))
+    for name, path in (p.get("save") or {}).items():
+        if not isinstance(path, str) or not saved.NAME.fullmatch(str(name)):
+            raise course_error(where, "save.%s: save NAME: FIELD, a name of letters, digits and _ and the answer's "
+                                      "field" % (name,))
     state.action("calling %s" % service)
     try:
         rospy.wait_for_service(service, within)
@@ -72,7 +79,19 @@ def call(state: StepState, p: Dict, where: str) -> None:
     if answer is None:
         raise failed("wrong_answer", "%s did not answer %s within %g s" % (service, predicates.describe(request),
                                                                            within))
-    for path, predicate in (p.get("expect") or {}).items():
+    for name, path in (p.get("save") or {}).items():
+        try:
+            state.saved[name] = predicates.field(answer, path)
+        except predicates.FieldMissing as err:
+            raise failed("wrong_answer", "%s's answer has no %s: %s" % (service, path, err)) from None
+    try:
+        expect = saved.resolve_predicates("call", p.get("expect") or {}, state.saved)
+    except saved.Unknown as err:
+        raise course_error(where, "expect names %s, which no step before it saved" % err) from None
+    for path, predicate in expect.items():
+        wrong = predicates.problem(predicate)
+        if wrong:
+            raise course_error(where, "expect.%s: %s" % (path, wrong))
         try:
             value = predicates.field(answer, path)
         except predicates.FieldMissing as err:

@@ -17,7 +17,7 @@ import rospkg
 import rospy
 
 from course_format import causes
-from course_milestones import discovery, launch_files, students
+from course_milestones import discovery, launch_files, master_log, students
 from course_milestones.discovery import Registration, node_uris
 from course_milestones.steps.state import Started, StepFailed, StepState, course_error, failed
 from course_checks.waiting import wait_for
@@ -61,7 +61,8 @@ def start(state: StepState, p: Dict, where: str) -> None:
     except rospkg.ResourceNotFound:
         raise failed("package_missing", "there is no package %s (the text runs `%s %s`)" % (
             pkg, "rosrun" if p.get("rosrun") else "roslaunch", " ".join(words)))
-    state.action("`%s %s`" % ("rosrun" if p.get("rosrun") else "roslaunch", " ".join(words)))
+    # the command as the text types it, its arguments too (a later failure says which run it follows)
+    state.action("`%s %s`" % ("rosrun" if p.get("rosrun") else "roslaunch", " ".join([words[0], target] + args)))
     within = float(p.get("within") or students.REGISTER_TIMEOUT)
     if p.get("rosrun"):
         started = _rosrun(pkg, target, args, wanted, p.get("find"), name, within)
@@ -75,7 +76,7 @@ def _rosrun(pkg: str, script: str, args, wanted, find, name: str, within: float)
     before = node_uris()
     if wanted is not None:
         found, tried = students.start_registering(pkg, args, wanted, hint="^%s$" % re.escape(script), log_name=name,
-                                                  timeout=within)
+                                                  timeout=within, keep_exited=True)
         if found is None:
             text = students.not_found_message(pkg, find_words(find), tried)
             raise StepFailed(causes.finding(causes.of(text, "not_started"), text + discovery.script_hints(pkg)))
@@ -86,9 +87,17 @@ def _rosrun(pkg: str, script: str, args, wanted, find, name: str, within: float)
     if not paths:
         raise failed(students.start_cause(pkg), "`%s`: package %s has no executable %s (found: %s)%s" % (
             command, pkg, script, discovery.describe(discovery.list_executables(pkg)), discovery.script_hints(pkg)))
+    history = master_log.History()
+    history.mark()
     keyboard, found, seen = students.start_and_wait(paths[:1] + args, lambda r: True, name, within)
     if found is None and keyboard.node.proc.poll() == 0:  # it ran to its end (a client): later steps read its output
         return Started(name, command, keyboard, None, before, False)
+    if found is None and not keyboard.node.running():
+        # it registered a node, then exited before that was seen: as if seen, so that a crash right
+        # after registering fails the same step with the same reason however fast it came
+        registered = [node for node in master_log.ever_registered(history.since()) if node not in before]
+        if registered:
+            return Started(name, command, keyboard, registered[0], before, False)
     if found is None:
         attempt = students.describe_attempt(script, keyboard, seen)
         keyboard.end()

@@ -1,6 +1,7 @@
 """What a data milestone's steps share while they run, one after the other: the student's processes
 the `start` steps began (by their `as` name), where each one's output stood at the last action
-(a `prints` step reads what came after), and the turtles' poses since then (`turtle_moves`).
+(a `prints` step reads what came after), the turtles' poses since then (`turtle_moves`), and the
+values steps saved for later ones (`call`'s `save`, named ${NAME}: course_format.saved).
 
 A check step that fails raises StepFailed with its finding (course_format.causes); a course
 file's own mistake is course_error, a failed milestone that names the step's place in the file.
@@ -77,6 +78,7 @@ class StepState:
         self.last_action = ""  # the last action in words ("`rosparam set /a 1`"), for a failure's sentence
         self.closers: List[Callable[[], None]] = []
         self.frames = None  # steps.frames.Frames, from the first TF step on
+        self.saved: Dict[str, object] = {}  # what steps saved (`call`'s save), for later steps' ${NAME}
 
     # -- started processes ------------------------------------------------------------------------
 

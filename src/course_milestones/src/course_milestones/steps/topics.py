@@ -76,16 +76,22 @@ def registration(state: StepState, p: Dict, where: str, kind: str):
     """Wait for the step's node to publish (or subscribe to) the step's topic; the nodes that do."""
     topic = p["topic"]
     nodes = state.nodes(p.get("node"), where)
+    started = state.find(p.get("node"))  # None: a node no step started (/turtlesim)
 
     def doing() -> List[str]:
         return [r.node for r in state.registered(nodes) if topic in getattr(r, kind)]
-    found = wait_for(doing, float(p.get("within") or 0), 0.1)
-    if not found and nodes == ():  # the started process has no node (any more): say what became of it
+
+    def exited() -> bool:
+        return started is not None and not started.process.node.running()
+    # no waiting on a process that is gone: it does not come back, and how long it ran is no matter
+    found = wait_for(lambda: doing() or exited(), float(p.get("within") or 0), 0.1)
+    found = found if isinstance(found, list) else doing()
+    if not found and started is not None and exited():  # the started process exited: say how
+        raise failed(state.exit_cause(started), "`%s` exited with status %s, so nothing %s %s%s" % (
+            started.command, started.process.node.proc.returncode, kind, topic,
+            students.last_words(started.process)))
+    if not found and nodes == ():  # the started process runs, but no node (any more)
         started = state.process(p.get("node"), where)
-        code = started.process.node.proc.poll()
-        if code is not None:
-            raise failed(state.exit_cause(started), "`%s` exited with status %s, so nothing %s %s%s" % (
-                started.command, code, kind, topic, students.last_words(started.process)))
         raise failed("not_started", "`%s` runs no node, so nothing %s %s" % (started.command, kind, topic))
     if not found:
         raise _not_registered(state, p.get("node"), nodes, topic, kind)

@@ -30,6 +30,7 @@ ROSDEP_KEYS = {
     "copydetect": "python3-copydetect",  # PyPI only: setup/rosdep.yaml maps the key to pip
     "PyQt5": "python3-pyqt5",
     "yaml": "python3-yaml",
+    "jsonschema": "python3-jsonschema",
     "matplotlib": "python3-matplotlib",
     "hypothesis": "python3-hypothesis",
     "coverage": "python3-coverage",

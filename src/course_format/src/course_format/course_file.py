@@ -16,20 +16,22 @@ from xml.sax.saxutils import quoteattr
 
 import yaml
 
-from course_format import causes
 from course_format.milestone import Equivalent, Milestone, Step
-from course_format import saved, schema
+from course_format import json_schema, saved, schema
 
 COURSE_FILE = "course.yaml"
 BUILTIN = "robotics_labs"
 MILESTONE_ID = re.compile(r"^[a-z][a-z0-9_]*$")
 PACKAGE_NAME = re.compile(r"^[a-z][a-z0-9_]*$")
 TYPE_NAME = re.compile(r"^[A-Za-z]\w*/[A-Za-z]\w*$")
+CHECK_FILE = re.compile(r"^[^./][^/]*\.test$")  # NAME.test, in the course's checks/
+COMMAND = re.compile(r"^\s*%s\s+\S+\s*$" % PACKAGE_NAME.pattern.strip("^$"))  # start's 'PKG SCRIPT', 'PKG FILE.launch'
 COURSE_KEYS = ("name", "title", "solution", "samples", "starter", "milestones")
 MILESTONE_KEYS = ("id", "title", "text", "points", "packages", "world", "time_limit", "steps", "check",
                   "equivalent")
 MUTANT_NAME = re.compile(r"^[a-z][a-z0-9_]*_[1-9][0-9]*$")  # course-lint's OPERATOR_N
 DEFAULT_TIME_LIMIT_S = 90.0
+DEFAULT_POINTS = 10.0
 
 Path = Tuple[Any, ...]
 
@@ -99,33 +101,35 @@ class _Checker:
         self.shown = shown
         self.lines = lines
         self.problems: List[str] = []
+        self.wrong: List[Tuple[int, Path]] = []  # the line and the path of each problem
 
     def error(self, path: Path, message: str) -> None:
-        self.problems.append("%s:%d: %s: %s" % (self.shown, self.lines.of(path), field_name(path), message))
+        line = self.lines.of(path)
+        problem = "%s:%d: %s: %s" % (self.shown, line, field_name(path), message)
+        if problem not in self.problems:  # the schema and a check of the loader may both see it
+            self.problems.append(problem)
+            self.wrong.append((line, tuple(path)))
 
-    def kind(self, path: Path, value: Any, kind: str) -> bool:
-        """Whether `value` is of the schema kind `kind`; an error when not."""
-        ok = {
-            schema.STR: isinstance(value, str),
-            schema.NUMBER: isinstance(value, (int, float)) and not isinstance(value, bool),
-            schema.INT: isinstance(value, int) and not isinstance(value, bool),
-            schema.BOOL: isinstance(value, bool),
-            schema.LIST: isinstance(value, list),
-            schema.MAP: isinstance(value, dict),
-            schema.ANY: True,
-        }[kind]
-        if not ok:
-            words = {schema.STR: "a string", schema.NUMBER: "a number", schema.INT: "an integer",
-                     schema.BOOL: "true or false", schema.LIST: "a list", schema.MAP: "a mapping"}
-            self.error(path, "expected %s, got %r" % (words[kind], value))
-        return ok
+    def clean(self, path: Path) -> bool:
+        """Whether no problem was found at `path` or inside it."""
+        return not any(wrong[:len(path)] == tuple(path) for _, wrong in self.wrong)
 
-    def unknown_keys(self, path: Path, given: Dict[Any, Any], known: Sequence[str]) -> None:
-        for key in given:
-            if key not in known:
-                close = [k for k in known if _close(str(key), k)]
-                self.error(path + (key,), "unknown field%s (known: %s)" % (
-                    " (did you mean %s?)" % close[0] if close else "", ", ".join(known)))
+    def in_order(self) -> List[str]:
+        """The problems by line (those of one line in the order found)."""
+        return [p for _, p in sorted(zip(self.wrong, self.problems), key=lambda pair: pair[0][0])]
+
+
+def _is(value: Any, kind: str) -> bool:
+    """Whether `value` is of the schema kind `kind` (told nothing: the JSON Schema says what is wrong)."""
+    return {
+        schema.STR: isinstance(value, str),
+        schema.NUMBER: isinstance(value, (int, float)) and not isinstance(value, bool),
+        schema.INT: isinstance(value, int) and not isinstance(value, bool),
+        schema.BOOL: isinstance(value, bool),
+        schema.LIST: isinstance(value, list),
+        schema.MAP: isinstance(value, dict),
+        schema.ANY: True,
+    }[kind]
 
 
 def _close(a: str, b: str) -> bool:
@@ -170,25 +174,18 @@ def parse(text: str, file: str, shown: str = "") -> Course:
             shown, mark.line + 1 if mark else 1, getattr(err, "problem", None) or err)]) from None
     check = _Checker(shown, _Lines(node))
     root = os.path.dirname(file)
+    for where, message in json_schema.problems(data):  # keys, kinds, names and ranges: the JSON Schema's
+        check.error(where, message)
     if not isinstance(data, dict):
-        check.error((), "expected a mapping with name, title and milestones")
         raise CourseError(check.problems)
-    check.unknown_keys((), data, COURSE_KEYS)
-    for key in ("name", "title"):
-        if key not in data:
-            check.error((key,), "missing")
-        else:
-            check.kind((key,), data[key], schema.STR)
     folders = {}
     for key in ("solution", "samples", "starter"):
-        if key in data and check.kind((key,), data[key], schema.STR):
+        if _is(data.get(key), schema.STR):
             folder = os.path.normpath(os.path.join(root, data[key]))
             folders[key] = folder if os.path.isdir(folder) else None
     milestones: List[Milestone] = []
     raw = data.get("milestones")
-    if raw is None:
-        check.error(("milestones",), "missing")
-    elif check.kind(("milestones",), raw, schema.LIST):
+    if isinstance(raw, list):  # what the schema cannot say: ids that differ, files that exist, steps' relations
         seen: Dict[str, int] = {}
         for i, item in enumerate(raw):
             m = _milestone(check, ("milestones", i), item, root, file)
@@ -198,53 +195,30 @@ def parse(text: str, file: str, shown: str = "") -> Course:
                 check.error(("milestones", i, "id"), "%r is also milestones[%d]'s id" % (m.name, seen[m.name]))
             seen[m.name] = i
             milestones.append(m)
-        if not raw:
-            check.error(("milestones",), "no milestone")
     if check.problems:
-        raise CourseError(check.problems)
+        raise CourseError(check.in_order())
     return Course(str(data["name"]), str(data["title"]), root, file, folders.get("solution"),
                   folders.get("samples"), milestones, folders.get("starter"))
 
 
 def _milestone(check: _Checker, path: Path, item: Any, root: str, file: str) -> Optional[Milestone]:
-    if not check.kind(path, item, schema.MAP):
+    """A milestone whose keys and values the JSON Schema has judged: what it cannot say (its check's
+    file exists, its steps' relations), then the milestone, or None when anything in it is wrong."""
+    if not isinstance(item, dict):
         return None
-    before = len(check.problems)
-    check.unknown_keys(path, item, MILESTONE_KEYS)
-    for key in ("id", "title", "text"):
-        if key not in item:
-            check.error(path + (key,), "missing")
-        elif check.kind(path + (key,), item[key], schema.STR) and key == "id" and not MILESTONE_ID.match(item[key]):
-            check.error(path + (key,), "%r: an id is lower case letters, digits and _, a letter first" % item[key])
-    points = item.get("points", 10.0)
-    if check.kind(path + ("points",), points, schema.NUMBER) and points < 0:
-        check.error(path + ("points",), "negative")
-    limit = item.get("time_limit", DEFAULT_TIME_LIMIT_S)
-    if check.kind(path + ("time_limit",), limit, schema.NUMBER) and limit <= 0:
-        check.error(path + ("time_limit",), "must be more than 0 s")
-    packages = item.get("packages", [])
-    if check.kind(path + ("packages",), packages, schema.LIST):
-        for j, name in enumerate(packages):
-            if not isinstance(name, str) or not PACKAGE_NAME.match(name):
-                check.error(path + ("packages", j), "%r is not a catkin package name" % (name,))
-    world = item.get("world", [])
-    if check.kind(path + ("world",), world, schema.LIST):
-        for j, name in enumerate(world):
-            if not isinstance(name, str) or name not in schema.WORLDS:
-                check.error(path + ("world", j), "%r: no such world (known: %s)" % (name, ", ".join(schema.WORLDS)))
     test_file = ""
     steps: Tuple[Step, ...] = ()
-    if ("steps" in item) == ("check" in item):
-        check.error(path, "give either steps (data) or check (a Python check's rostest file), not %s"
-                    % ("both" if "steps" in item else "neither"))
-    elif "check" in item:
-        if check.kind(path + ("check",), item["check"], schema.STR):
-            test_file = _check_file(check, path + ("check",), item["check"], root)
-    elif check.kind(path + ("steps",), item["steps"], schema.LIST):
+    if _is(item.get("check"), schema.STR) and check.clean(path + ("check",)):
+        test_file = _check_file(check, path + ("check",), item["check"], root)
+    if _is(item.get("steps"), schema.LIST):
         steps = _steps(check, path + ("steps",), item["steps"], os.path.basename(file))
     equivalent = _equivalent(check, path + ("equivalent",), item.get("equivalent", {}), item.get("packages"))
-    if len(check.problems) > before:
+    if not check.clean(path):
         return None
+    points = item.get("points", DEFAULT_POINTS)
+    limit = item.get("time_limit", DEFAULT_TIME_LIMIT_S)
+    packages = item.get("packages", [])
+    world = item.get("world", [])
     return Milestone(item["id"], item["title"], item["text"], test_file, tuple(packages), float(points),
                      steps, tuple(world), file, float(limit), equivalent)
 
@@ -252,32 +226,19 @@ def _milestone(check: _Checker, path: Path, item: Any, root: str, file: str) -> 
 def _equivalent(check: _Checker, path: Path, given: Any, packages: Any) -> Tuple[Equivalent, ...]:
     """`equivalent: {NAME: REASON}`: the mutants course-lint makes of this milestone's reference
     (NAME as it names them, OPERATOR_N) that no check can kill, each with the reason a reviewer
-    reads. Whether each names a surviving mutant only course-lint can tell (docs/course_lint.md)."""
+    reads. Whether each names a surviving mutant only course-lint can tell (docs/course_lint.md); the
+    names' and reasons' form (MUTANT_NAME, some text) is the JSON Schema's."""
     if not isinstance(given, dict):
-        check.error(path, "expected a mapping of mutant names to reasons, e.g. {rate_div10_1: \"section 2 "
-                          "fixes no rate\"}, got %r" % (given,))
         return ()
     if given and not packages:
         check.error(path, "the milestone names no package: course-lint makes no mutant of it")
-    found = []
-    for name, reason in given.items():
-        if not isinstance(name, str) or not MUTANT_NAME.match(name):
-            check.error(path + (name,), "%r: name a mutant as course-lint does, OPERATOR_N (e.g. rate_div10_1)"
-                        % (name,))
-        elif not isinstance(reason, str) or not reason.strip():
-            check.error(path + (name,), "expected the reason a reviewer reads (why no check can kill it), got %r"
-                        % (reason,))
-        else:
-            found.append(Equivalent(name, reason.strip(), check.lines.of(path + (name,))))
-    return tuple(found)
+    return tuple(Equivalent(name, reason.strip(), check.lines.of(path + (name,)))
+                 for name, reason in given.items() if isinstance(reason, str))
 
 
 def _check_file(check: _Checker, path: Path, name: str, root: str) -> str:
     """The rostest file of a Python check: the course's own checks/NAME (a course keeps its checks in
-    its folder, the built-in course as any other)."""
-    if not name.endswith(".test") or "/" in name or name.startswith("."):
-        check.error(path, "%r: name a rostest file, NAME.test, in the course's checks/ folder" % name)
-        return ""
+    its folder, the built-in course as any other; its name's form is the JSON Schema's, CHECK_FILE)."""
     own = os.path.join(root, "checks", name)
     if os.path.isfile(own):
         return own
@@ -291,24 +252,16 @@ def _steps(check: _Checker, path: Path, items: List[Any], shown: str) -> Tuple[S
     kept: List[str] = []  # what steps saved (`call`'s save), for later steps' ${NAME}
     for i, item in enumerate(items):
         here = path + (i,)
-        if not isinstance(item, dict) or len(item) != 1:
-            check.error(here, "a step is one primitive with its parameters, e.g. {publishes: {topic: /chatter}} "
-                              "(known: %s)" % ", ".join(schema.PRIMITIVES))
+        if not isinstance(item, dict) or len(item) != 1:  # what is wrong with it: the JSON Schema's
             continue
         (name, params), = item.items()
         primitive = schema.PRIMITIVES.get(name)
-        if primitive is None:
-            close = [k for k in schema.PRIMITIVES if _close(str(name), k)]
-            check.error(here + (name,), "no such primitive%s (known: %s)" % (
-                " (did you mean %s?)" % close[0] if close else "", ", ".join(schema.PRIMITIVES)))
-            continue
         params = {} if params is None else params
-        if not check.kind(here + (name,), params, schema.MAP):
+        if primitive is None or not isinstance(params, dict):
             continue
-        before = len(check.problems)
         filled = _params(check, here + (name,), primitive, params, names)
         _references(check, here + (name,), filled, kept)
-        if len(check.problems) == before:
+        if check.clean(here):
             where = "%s:%d (%s)" % (shown, check.lines.of(here), field_name(here))
             steps.append(Step(name, filled, where))
     return tuple(steps)
@@ -317,13 +270,7 @@ def _steps(check: _Checker, path: Path, items: List[Any], shown: str) -> Tuple[S
 def _references(check: _Checker, path: Path, params: Dict[str, Any], kept: List[str]) -> None:
     """Every ${NAME} names a value a step before this one saved (a call's `expect`, also one this call
     saves); a call's `save` is NAME: FIELD, its names added to `kept` for the steps after it."""
-    own = params.get("save") if isinstance(params.get("save"), dict) else {}
-    for key, value in own.items():
-        if not isinstance(key, str) or not saved.NAME.fullmatch(key):
-            check.error(path + ("save", key), "%r: a saved value's name is letters, digits and _, not a digit first"
-                        % (key,))
-        elif not isinstance(value, str) or not value:
-            check.error(path + ("save", key), "expected the answer's field (name2, pose.x), got %r" % (value,))
+    own = params.get("save") if isinstance(params.get("save"), dict) else {}  # its form: the JSON Schema's
     for key, value in params.items():
         if key == "save":
             continue
@@ -338,52 +285,28 @@ def _references(check: _Checker, path: Path, params: Dict[str, Any], kept: List[
 
 def _params(check: _Checker, path: Path, primitive: schema.Primitive, params: Dict[Any, Any],
             names: List[str]) -> Dict[str, Any]:
-    known = [p.name for p in primitive.params]
-    check.unknown_keys(path, params, known)
+    """The step's parameters with their defaults; a value of another kind left out (the JSON Schema has
+    said so), so that the checks below see only values of their kinds."""
     filled: Dict[str, Any] = {}
     for p in primitive.params:
         if p.name not in params:
-            if p.required:
-                check.error(path + (p.name,), "missing (%s)" % (p.doc or p.kind))
             filled[p.name] = p.default
-            continue
-        value = params[p.name]
-        if check.kind(path + (p.name,), value, p.kind):
-            filled[p.name] = value
+        elif _is(params[p.name], p.kind):
+            filled[p.name] = params[p.name]
     _semantics(check, path, primitive.name, filled, names)
     return filled
 
 
 def _semantics(check: _Checker, path: Path, name: str, params: Dict[str, Any], names: List[str]) -> None:
-    """What the kinds alone do not say: a start names one command, regular expressions compile,
-    predicates use known words, a `node` names a node started before."""
-    if name == "start":
-        commands = [k for k in ("rosrun", "roslaunch") if isinstance(params.get(k), str)]
-        if len(commands) != 1:
-            check.error(path, "give one of rosrun: 'PKG SCRIPT' or roslaunch: 'PKG FILE.launch'")
-        else:
-            words = params[commands[0]].split()
-            if len(words) != 2 or not PACKAGE_NAME.match(words[0]):
-                check.error(path + (commands[0],), "%r: expected 'PKG %s'" % (
-                    params[commands[0]], "SCRIPT" if commands[0] == "rosrun" else "FILE.launch"))
-            else:
-                names.append(params.get("as") or words[1])
-        found = params.get("find")
-        if isinstance(found, dict):
-            if len(found) != 1 or next(iter(found)) not in ("publishes", "subscribes", "advertises", "node") \
-                    or not isinstance(next(iter(found.values())), str):
-                check.error(path + ("find",), "one of {publishes: TOPIC}, {subscribes: TOPIC}, "
-                                              "{advertises: SERVICE}, {node: /NAME}")
-        for word in params.get("args") or []:
-            if not isinstance(word, (str, int, float)):
-                check.error(path + ("args",), "%r: a command-line word is a string or a number" % (word,))
+    """What the JSON Schema does not say: a start names one command, 'PKG SCRIPT', regular expressions
+    compile, a `node` names a node started before, a predicate's bounds are in order, a layout's
+    types are among those named, a drawing's shape takes its sizes."""
+    if name == "start":  # one command, 'PKG SCRIPT' (COMMAND): the JSON Schema's; the name it makes known
+        commands = [params[k] for k in ("rosrun", "roslaunch") if isinstance(params.get(k), str)]
+        if len(commands) == 1 and COMMAND.match(commands[0]):
+            names.append(params.get("as") or commands[0].split()[1])
     if isinstance(params.get("pattern"), str):
         _regex(check, path + ("pattern",), params["pattern"])
-    cause = params.get("cause")
-    if isinstance(cause, str) and cause not in causes.BY_KEY:
-        close = [k for k in causes.BY_KEY if _close(cause, k)]
-        check.error(path + ("cause",), "%r is no cause%s (known: course_format/causes.py)" % (
-            cause, " (did you mean %s?)" % close[0] if close else ""))
     node = params.get("node")
     if isinstance(node, str) and not node.startswith("/") and node not in names:
         check.error(path + ("node",), "%r: no start step before this one is named so (started: %s); a node "
@@ -397,9 +320,6 @@ def _semantics(check: _Checker, path: Path, name: str, params: Dict[str, Any], n
             continue
         for field, predicate in value.items():
             _predicate(check, path + (key, field), predicate)
-    kind = params.get("type")
-    if isinstance(kind, str) and name != "type" and not TYPE_NAME.match(kind):
-        check.error(path + ("type",), "%r: a type is PKG/Name" % kind)
     layouts = params.get("layouts")
     if isinstance(layouts, dict):
         named = {k for k in (params.get("messages") or []) + (params.get("services") or []) if isinstance(k, str)}
@@ -414,10 +334,6 @@ def _semantics(check: _Checker, path: Path, name: str, params: Dict[str, Any], n
                     check.error(path + ("layouts", kind), "expected {field: type} (a service: {request: {field: "
                                                           "type}, response: {field: type}}); got %r" % (layout,))
                     break
-    for key in ("messages", "services", "actions"):
-        for j, kind in enumerate(params.get(key) or []):
-            if not isinstance(kind, str) or not TYPE_NAME.match(kind):
-                check.error(path + (key, j), "%r: a type is PKG/Name" % (kind,))
     if name in DRAWING_PARAMS:
         _drawing(check, path, name, params)
     if name in REST_STEPS:
@@ -432,49 +348,42 @@ MAY_BE_ZERO = ("for", "tolerance", "r", "g", "b")
 
 
 def _drawing(check: _Checker, path: Path, name: str, params: Dict[str, Any]) -> None:
-    """The drawing steps: a shape of steps.shapes.SHAPES given only its own sizes (an arc its angle),
-    sizes and tolerances above 0, a box not empty, colour channels 0-255."""
+    """The drawing steps: a shape given only its own sizes (an arc its angle), a box not empty (the
+    shapes, sizes, tolerances and colour channels are the JSON Schema's: SHAPE_PARAMS, RANGES)."""
     numbers = {k: v for k, v in params.items() if isinstance(v, (int, float)) and not isinstance(v, bool)}
-    for key in DRAWING_PARAMS[name]:
-        value = numbers.get(key)
-        if value is not None and (value < 0 or value == 0 and key not in MAY_BE_ZERO):
-            check.error(path + (key,), "%r: expected a number %s 0" % (value, "from" if key in MAY_BE_ZERO
-                                                                       else "above"))
-    if name == "draws" and isinstance(params.get("shape"), str):
+    if name == "draws" and params.get("shape") in SHAPE_PARAMS:
         shape = params["shape"]
-        if shape not in SHAPE_PARAMS:
-            check.error(path + ("shape",), "%r: a shape is one of %s" % (shape, ", ".join(SHAPE_PARAMS)))
-            return
         for key in ("radius", "angle", "side"):
             if params.get(key) is not None and key not in SHAPE_PARAMS[shape]:
                 check.error(path + (key,), "a %s has no %s (it takes %s)" % (shape, key,
                                                                              ", ".join(SHAPE_PARAMS[shape])))
         if shape == "arc" and params.get("angle") is None:
             check.error(path, "an arc needs its angle: the angle turned, rad")
-        if "tolerance" in numbers and numbers["tolerance"] >= 1:
-            check.error(path + ("tolerance",), "%r: a relative tolerance is below 1" % (numbers["tolerance"],))
     for low, high in (("xmin", "xmax"), ("ymin", "ymax")):
         if name == "in_bounds" and low in numbers and high in numbers and numbers[low] >= numbers[high]:
             check.error(path + (high,), "%s %r is not above %s %r: the box is empty" % (high, numbers[high], low,
                                                                                        numbers[low]))
-    for key in ("r", "g", "b"):
-        if name == "pen_colour" and key in numbers and numbers[key] > 255:
-            check.error(path + (key,), "%r: a colour channel is 0-255" % (numbers[key],))
 
 
 # The steps that judge a turtle at rest, and their parameters that are 0 or more (`still`: above 0).
 REST_STEPS = {"stops_at": ("tolerance", "heading_tolerance", "still", "within"),
               "turns": ("tolerance", "drift", "still", "within")}
+# Each bounded step parameter's range in JSON Schema's words, which the loader checks through the
+# schema (course_format.json_schema): (step, parameter) -> {minimum|exclusiveMinimum|maximum|exclusiveMaximum: bound}.
+RANGES: Dict[Tuple[str, str], Dict[str, float]] = {
+    (name, key): {"minimum" if key in MAY_BE_ZERO else "exclusiveMinimum": 0}
+    for name, keys in DRAWING_PARAMS.items() for key in keys}
+RANGES[("draws", "tolerance")]["exclusiveMaximum"] = 1  # relative to the shape's sizes
+for _channel in ("r", "g", "b"):
+    RANGES[("pen_colour", _channel)]["maximum"] = 255
+RANGES.update({(name, key): {"exclusiveMinimum" if key == "still" else "minimum": 0}
+               for name, keys in REST_STEPS.items() for key in keys})
 
 
 def _rest(check: _Checker, path: Path, name: str, params: Dict[str, Any]) -> None:
-    """stops_at names a point (x and y), a heading, or both; turns an angle other than 0; their
-    tolerances are 0 or more, and `still` more than 0 s."""
+    """stops_at names a point (x and y), a heading, or both; turns an angle other than 0 (their
+    tolerances are 0 or more, and `still` more than 0 s: RANGES, the JSON Schema's)."""
     numbers = {k: v for k, v in params.items() if isinstance(v, (int, float)) and not isinstance(v, bool)}
-    for key in REST_STEPS[name]:
-        value = numbers.get(key)
-        if value is not None and (value < 0 or value == 0 and key == "still"):
-            check.error(path + (key,), "%r: expected a number %s 0" % (value, "above" if key == "still" else "from"))
     if name == "stops_at":
         if (params.get("x") is None) != (params.get("y") is None):
             check.error(path + ("y" if params.get("y") is None else "x",), "missing: a point is x and y")
@@ -492,25 +401,16 @@ def _regex(check: _Checker, path: Path, pattern: str) -> None:
 
 
 def _predicate(check: _Checker, path: Path, predicate: Any) -> None:
-    if not isinstance(predicate, dict) or not predicate:
-        check.error(path, "expected a predicate: {equals: V}, {differs: V}, {approx: V, tolerance: T}, "
-                          "{matches: REGEX}, {between: [LO, HI]} or {nonempty: true}; got %r" % (predicate,))
+    """What the JSON Schema does not say of a predicate (its keys and kinds it does): its regular
+    expression compiles, its bounds are in order."""
+    if not isinstance(predicate, dict):
         return
-    check.unknown_keys(path, predicate, schema.PREDICATE_KEYS)
-    if "tolerance" in predicate and "approx" not in predicate:
-        check.error(path + ("tolerance",), "a tolerance goes with approx")
-    for key in ("approx", "tolerance"):
-        if key in predicate:
-            check.kind(path + (key,), predicate[key], schema.NUMBER)
-    if "matches" in predicate and check.kind(path + ("matches",), predicate["matches"], schema.STR):
+    if isinstance(predicate.get("matches"), str):
         _regex(check, path + ("matches",), predicate["matches"])
-    if "between" in predicate:
-        bounds = predicate["between"]
-        if not (isinstance(bounds, list) and len(bounds) == 2 and all(
-                isinstance(b, (int, float)) and not isinstance(b, bool) for b in bounds) and bounds[0] <= bounds[1]):
-            check.error(path + ("between",), "expected [LO, HI], two numbers, LO <= HI; got %r" % (bounds,))
-    if "nonempty" in predicate:
-        check.kind(path + ("nonempty",), predicate["nonempty"], schema.BOOL)
+    bounds = predicate.get("between")
+    if isinstance(bounds, list) and len(bounds) == 2 and all(_is(b, schema.NUMBER) for b in bounds) \
+            and not bounds[0] <= bounds[1]:
+        check.error(path + ("between",), "expected [LO, HI], two numbers, LO <= HI; got %r" % (bounds,))
 
 
 DURATIONS_FILE = "durations.json"

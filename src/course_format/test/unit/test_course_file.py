@@ -83,7 +83,7 @@ def test_the_builtin_course_is_the_five_texts_milestones():
     ("name: x\ntitle: y\nmilestones:\n  - {id: a, title: t, text: x}\n",
      "course.yaml:4: milestones[0]: give either steps (data) or check"),
     ("name: x\ntitle: y\nmilestones:\n  - {id: a, title: t, text: x, points: -1, check: chatter.test}\n",
-     "milestones[0].points: negative"),
+     "milestones[0].points: -1: expected a number from 0"),
     ("name: x\ntitle: y\nmilestones:\n  - {id: a, title: t, text: x, world: [gazebo], check: chatter.test}\n",
      "milestones[0].world[0]: 'gazebo': no such world"),
     ("name: x\ntitle: y\nmilestones:\n  - {id: a, title: t, text: x, check: ../etc.test}\n",

@@ -234,6 +234,7 @@ def test_the_loader_takes_the_drawing_steps_and_says_what_is_wrong_with_one(tmp_
     said = str(error.value)
     for text in ("'hexagon': a shape is one of circle, arc, square", "a square has no radius (it takes side)",
                  "an arc needs its angle", "draws.radius: -1: expected a number above 0",
-                 "1.5: a relative tolerance is below 1", "xmax 4 is not above xmin 5", "300: a colour channel is 0-255",
+                 "tolerance: 1.5: expected a number below 1", "xmax 4 is not above xmin 5",
+                 "pen_colour.r: 300: expected a number up to 255",
                  "pen_colour.b: -1: expected a number from 0"):
         assert text in said

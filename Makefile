@@ -103,9 +103,10 @@ hub-password: ## the hand-out sheet of initial passwords; RESET=alice gives alic
 
 # At a deadline: every student's catkin_ws/src snapshotted read-only, graded as a class (the gradebook
 # keyed by hub user), each report copied into its student's ~/grades. MILESTONES="chatter ..." as for autograder.
+# LTI=lti.yaml then posts the scores to the LMS gradebook (LTI 1.3 AGS: docs/grading.md).
 hub-grade: build ## at a deadline: every student's files snapshotted, graded, reports into their ~/grades
 	@$(ROSENV) rosrun course_hub hub_grade --data '$(HUB_DATA)' --class-list '$(abspath $(HUB_CLASS_LIST))' \
-	  $(foreach m,$(MILESTONES),--only $(m))
+	  $(foreach m,$(MILESTONES),--only $(m)) $(if $(LTI),--lti '$(abspath $(LTI))')
 
 # The end-to-end suites, tests/e2e/ (pytest's `e2e` marker, which make test leaves out: pytest.ini's addopts),
 # each run by its target below with its lines printed as they come (-s); their options in the environment.

@@ -41,6 +41,9 @@ ROSDEP_KEYS = {
     "tornado": "python3-tornado",
     "PIL": "python3-pil",
     "bcrypt": "python3-bcrypt",
+    "jwt": "python3-jwt",
+    "cryptography": "python3-cryptography",
+    "lti1p3platform": "python3-lti1p3platform",  # PyPI only: setup/rosdep.yaml maps the key to pip
     # the hub's own venv (.venv-hub): course_hub.auth and course_hub.spawner are imported by JupyterHub there
     "firstuseauthenticator": "python3-jupyterhub-firstuseauthenticator",  # PyPI: setup/rosdep.yaml
     "dockerspawner": "python3-dockerspawner",  # PyPI: setup/rosdep.yaml

@@ -1,5 +1,6 @@
 """rosrun course_grader grade [SUBMISSION...] [--class DIR] [--course DIR] [--jobs N] [--only M ...]
                              [--out DIR] [--boilerplate DIR ...] [--regrade STUDENT]
+                             [--lti CONFIG --lti-users FILE [--post-only] [--dry-run]]
 
 Grades each SUBMISSION (a folder, .zip or .tar.gz of catkin packages), or every entry of a class
 folder (--class DIR), against the milestones of a course (--course DIR: a folder with a
@@ -16,8 +17,15 @@ Writes under --out (default ./grades):
 --regrade STUDENT grades that one student again into an existing --out (their submission among
 those given, else the copy the last grading unpacked) and writes the class files again; every
 other student's verdicts stay as their results.json holds them.
+--lti CONFIG posts each student's scores to the LMS gradebook after the grading (LTI 1.3 AGS,
+course_lti; CONFIG is lti.yaml, --lti-users FILE maps each student to their LMS user id: a CSV
+student,user_id, or the hub's lti-users.json); --post-only posts the grading already in --out and
+grades nothing (also: what an earlier run left pending, lti-pending.json); --dry-run prints the
+requests it would send and sends nothing. docs/grading.md, "Grades back to the LMS".
 Prints a line per finished submission. Exit code: with the reference, 1 if a milestone fails;
-with students, 0 once every submission has its verdicts; 130 when stopped by Ctrl+C (SIGINT) or
+with students, 0 once every submission has its verdicts; 2 on a bad command line, course file or
+LTI configuration (checked before grading); 3 when, with --lti, some score could not be posted
+(listed in <out>/lti-pending.json); 130 when stopped by Ctrl+C (SIGINT) or
 SIGTERM: within seconds, the runs under way ended, the verdicts so far written and the rest
 "not graded (interrupted)". Each start first ends what a killed grading left (processes, pids
 cgroups; in the same --out, its work folders).
@@ -35,6 +43,8 @@ from typing import List, Optional, Sequence, Set, Tuple
 
 from course_format import course_file
 from course_format.milestone import Milestone
+from course_lti import post as lti_post
+from course_lti.config import ConfigError
 from course_sandbox import leftovers, levels
 from course_sandbox.policy import Limits, MiB
 
@@ -115,6 +125,14 @@ def parse(argv: Optional[List[str]]) -> argparse.Namespace:
                         help="grade only STUDENT again, into the earlier grading in --out (see above)")
     parser.add_argument("--course", metavar="DIR", default="",
                         help="the course: a folder holding course.yaml (default: the built-in course)")
+    parser.add_argument("--lti", metavar="CONFIG", default="",
+                        help="post the scores to the LMS gradebook (LTI 1.3 AGS) as CONFIG (lti.yaml) says")
+    parser.add_argument("--lti-users", metavar="FILE", default="",
+                        help="with --lti: each student's LMS user id (CSV student,user_id, or the hub's lti-users.json)")
+    parser.add_argument("--post-only", action="store_true",
+                        help="with --lti: post the grading already in --out (and what it left pending); grade nothing")
+    parser.add_argument("--dry-run", action="store_true",
+                        help="with --lti: print the requests that would be sent to the LMS, send nothing")
     parser.add_argument("--list", action="store_true", help="list the milestones and exit")
     parser.add_argument("-v", "--verbose", action="store_true", help="a line per milestone run too")
     return parser.parse_args(argv)
@@ -201,6 +219,31 @@ def load_course(path: str) -> course_file.Course:
     return course_file.load(os.path.abspath(path) if path else course_file.builtin_course_dir())
 
 
+def lms_poster(opts: argparse.Namespace, course: course_file.Course) -> Optional[lti_post.Poster]:
+    """The LMS poster --lti asks for (None without it), its files checked before any grading;
+    ValueError with what is wrong."""
+    if not opts.lti:
+        if opts.post_only or opts.dry_run or opts.lti_users:
+            raise ValueError("--lti-users, --post-only and --dry-run go with --lti CONFIG")
+        return None
+    if not opts.lti_users:
+        raise ValueError("--lti needs --lti-users FILE: each student's LMS user id (CSV student,user_id)")
+    try:
+        return lti_post.prepare(opts.lti, opts.lti_users, course, dry_run=opts.dry_run)
+    except ConfigError as err:
+        raise ValueError("the LTI configuration has errors:\n%s" % err) from err
+
+
+def post_grades(poster: Optional[lti_post.Poster], out: str, code: int) -> int:
+    """Post the grading in `out` with `poster`, if any: the grading's exit `code`, or
+    lti_post.EXIT_PENDING when it was 0 and some score is pending."""
+    if poster is None:
+        return code
+    summary = poster.run(out)
+    print(summary.line(), flush=True)
+    return code or summary.exit_code()
+
+
 def main(argv: Optional[List[str]] = None) -> int:
     opts = parse(argv)
     try:
@@ -208,6 +251,17 @@ def main(argv: Optional[List[str]] = None) -> int:
     except course_file.CourseError as err:
         print("cannot grade: the course file has errors:\n%s" % err, file=sys.stderr)
         return 2
+    try:
+        poster = lms_poster(opts, course)
+    except ValueError as err:
+        print("cannot post to the LMS: %s" % err, file=sys.stderr)
+        return 2
+    if opts.post_only:
+        if not class_outputs.earlier_students(os.path.abspath(opts.out)):
+            print("cannot post to the LMS: %s holds no grading (no <student>/results.json)" % opts.out,
+                  file=sys.stderr)
+            return 2
+        return post_grades(poster, os.path.abspath(opts.out), 0)
     MILESTONES: List[Milestone] = course.milestones
     if opts.list:
         for m in MILESTONES:
@@ -232,6 +286,9 @@ def main(argv: Optional[List[str]] = None) -> int:
             print("cannot regrade: %s" % err, file=sys.stderr)
             return 2
     reference = not subs
+    if reference and poster is not None:
+        print("--lti posts students' scores: give SUBMISSION... or --class DIR (or --post-only)", file=sys.stderr)
+        return 2
     if opts.results_json and len(subs) != 1:
         print("--results-json needs exactly one submission", file=sys.stderr)
         return 2
@@ -289,5 +346,5 @@ def main(argv: Optional[List[str]] = None) -> int:
         print("interrupted: %d verdict(s) written, %d not graded" % (
             sum(v.reason != INTERRUPTED for v in verdicts), sum(v.reason == INTERRUPTED for v in verdicts)),
             flush=True)
-        return EXIT_INTERRUPTED
-    return 1 if reference and failed else 0
+        return post_grades(poster, out, EXIT_INTERRUPTED)
+    return post_grades(poster, out, 1 if reference and failed else 0)

@@ -47,6 +47,7 @@ ROSDEP_KEYS = {
     # the hub's own venv (.venv-hub): course_hub.auth and course_hub.spawner are imported by JupyterHub there
     "firstuseauthenticator": "python3-jupyterhub-firstuseauthenticator",  # PyPI: setup/rosdep.yaml
     "dockerspawner": "python3-dockerspawner",  # PyPI: setup/rosdep.yaml
+    "ltiauthenticator": "python3-jupyterhub-ltiauthenticator",  # PyPI: setup/rosdep.yaml (course_hub.lti)
     "traitlets": "python3-traitlets",
     # the students' JupyterLab venv (.venv-jupyter): course_workbench/venv/singleuser.py runs there
     "jupyterhub": "python3-jupyterhub",  # PyPI: setup/rosdep.yaml

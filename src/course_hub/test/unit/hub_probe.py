@@ -10,7 +10,8 @@ The request (JSON): `config_file` (a JupyterHub config file, read as JupyterHub 
 `config` ({section: {trait: value}}, applied over it); `user`; `action`:
 
 - `traits`: CourseSpawner (for `user`) and, when `authenticator_traits` names some,
-  CourseAuthenticator made from the configuration; the answer holds the traits named in
+  CourseAuthenticator (or the class `authenticator_class` names, e.g.
+  course_hub.lti.CourseLTIAuthenticator) made from the configuration; the answer holds the traits named in
   `spawner_traits` and `authenticator_traits`, the JupyterHub
   section of the configuration, the configuration's warnings (an option no class knows), and the
   `error` when a class refused its configuration;
@@ -32,6 +33,7 @@ from typing import Any, Dict, List
 
 from traitlets.config import Config
 from traitlets.config.loader import PyFileConfigLoader
+from traitlets.utils.importstring import import_item
 
 
 class Warnings(logging.Handler):
@@ -78,7 +80,8 @@ def traits(request: Dict[str, Any]) -> Dict[str, Any]:
         spawner = CourseSpawner(config=config, user=user, hub=hub)
         answer["spawner"] = {name: plain(getattr(spawner, name)) for name in request.get("spawner_traits", [])}
         if request.get("authenticator_traits"):
-            auth = CourseAuthenticator(config=config)
+            chosen = request.get("authenticator_class")
+            auth = (import_item(chosen) if chosen else CourseAuthenticator)(config=config)
             answer["authenticator"] = {name: plain(getattr(auth, name)) for name in request["authenticator_traits"]}
     except Exception as err:  # a trait's refusal, a bad class list: the test reads it
         answer["error"] = "%s: %s" % (type(err).__name__, err)

@@ -34,7 +34,8 @@ def test_one_version_for_catkin_and_pip():
 def test_jupyterhub_finds_the_course_spawner_and_authenticator_by_their_entry_points():
     points = pyproject()["entry-points"]
     assert points["jupyterhub.spawners"] == {"course": "course_hub.spawner:CourseSpawner"}
-    assert points["jupyterhub.authenticators"] == {"course": "course_hub.auth:CourseAuthenticator"}
+    assert points["jupyterhub.authenticators"] == {"course": "course_hub.auth:CourseAuthenticator",
+                                                   "course-lti": "course_hub.lti:CourseLTIAuthenticator"}
     for group in points.values():
         assert all(defined(target) for target in group.values()), group
 

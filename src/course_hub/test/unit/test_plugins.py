@@ -266,3 +266,57 @@ def test_kubernetes_uses_the_same_authenticator_traits_and_start(tmp_path, class
     args = init["command"][1:]
     args[1], args[3] = str(tmp_path / "data"), class_list
     assert passwords.main(args) == 0 and sorted(passwords.handed_out(str(tmp_path / "data"))) == ["alice", "jean_luc", "tom"]
+
+
+LTI = "course_hub.lti.CourseLTIAuthenticator"
+LTI_TRAITS = ["issuer", "client_id", "deployment_ids", "authorize_url", "jwks_endpoint", "data_dir", "username_key",
+              "milestone_parameter", "allow_all", "ta_roles"]
+LTI_ENV = {"HUB_AUTH": "lti", "HUB_LTI_ISSUER": "https://lms.example.edu", "HUB_LTI_CLIENT_ID": "42,43",
+           "HUB_LTI_DEPLOYMENT_ID": "1:ros", "HUB_LTI_AUTHORIZE_URL": "https://lms.example.edu/auth",
+           "HUB_LTI_JWKS_URL": "https://lms.example.edu/jwks"}
+
+
+def made_lti(config=None, config_file=None, env=None):
+    return probe({"action": "traits", "config": config or {}, "config_file": config_file,
+                  "authenticator_class": LTI, "authenticator_traits": LTI_TRAITS}, env)
+
+
+def test_a_class_with_an_lms_chooses_the_lti_login_in_the_config_file(tmp_path):
+    answer = made_lti(config_file=COURSE_CONFIG, env=dict(LTI_ENV, HUB_DATA=str(tmp_path)))
+    assert "error" not in answer and answer["warnings"] == [], answer
+    assert answer["jupyterhub"]["authenticator_class"] == LTI
+    auth = answer["authenticator"]
+    assert (auth["issuer"], auth["client_id"], auth["deployment_ids"]) == ("https://lms.example.edu", ["42", "43"],
+                                                                            ["1:ros"])
+    assert auth["data_dir"] == str(tmp_path) and auth["username_key"] == "sub"  # the claim that never changes
+    assert auth["milestone_parameter"] == "milestone" and auth["allow_all"] is True  # the LMS decides who
+    assert not any("institution" in role for role in auth["ta_roles"])
+
+
+def test_the_lti_login_without_its_registration_stops_with_what_is_missing(tmp_path):
+    answer = made_lti(config_file=COURSE_CONFIG, env={"HUB_AUTH": "lti", "HUB_DATA": str(tmp_path)})
+    assert "issuer, client_id, deployment_ids, authorize_url, jwks_endpoint not set" in answer["error"], answer
+
+
+def test_the_lti_login_gives_no_initial_passwords_and_the_class_list_path_is_unchanged(tmp_path, class_list):
+    config = tmp_path / "hub.py"
+    config.write_text("c = get_config()\nload_subconfig(%r)\n" % COURSE_CONFIG)
+    env = dict(LTI_ENV, HUB_DATA=str(tmp_path / "data"), HUB_CLASS_LIST=class_list)
+    lines = probe({"action": "prepare", "config_file": str(config)}, env)["lines"]
+    assert "no initial passwords: the hub's authenticator is <class '%s'>" % LTI in lines[0], lines
+    assert not os.path.exists(passwords.sheet_of(str(tmp_path / "data")))
+    hub = made(config_file=COURSE_CONFIG, env={"HUB_DATA": str(tmp_path), "HUB_CLASS_LIST": class_list})["jupyterhub"]
+    assert hub["authenticator_class"] == "course_hub.auth.CourseAuthenticator"  # without HUB_AUTH=lti
+
+
+def test_kubernetes_values_show_the_lti_login_with_the_same_traits(tmp_path):
+    """values.yaml's commented CourseLTIAuthenticator section, uncommented, is a configuration
+    the class accepts."""
+    text = open(KUBERNETES_VALUES).read()
+    block = re.search(r"^    # CourseLTIAuthenticator:\n((?:    #   .*\n)+)", text, re.M)
+    assert block, "values.yaml shows no CourseLTIAuthenticator section"
+    section = yaml.safe_load("\n".join(line[7:] for line in block.group(1).splitlines()))
+    answer = made_lti({"CourseLTIAuthenticator": section})
+    assert "error" not in answer and answer["warnings"] == [], answer
+    assert answer["authenticator"]["data_dir"] == section["data_dir"] == "/srv/jupyterhub"
+    assert "course_hub.lti.CourseLTIAuthenticator" in text

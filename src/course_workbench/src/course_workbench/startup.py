@@ -54,6 +54,12 @@ XSTARTUP_VAR = "JUPYTER_REMOTE_DESKTOP_PROXY_XSTARTUP"
 DISPLAY_FILE_VAR = "COURSE_WORKBENCH_DISPLAY_FILE"
 STATE_FOLDER = os.path.join(".local", "share", "course-workbench")  # under the home: settings, display
 HUB_VAR = "JUPYTERHUB_API_TOKEN"  # set by every JupyterHub spawner: this server is one of a hub's users'
+# ~/milestones under a hub: the course's milestone pages, where a launch from the LMS naming a
+# milestone opens the workbench (course_hub.lti: lab/tree/milestones/<id>.md). The course folder is
+# $COURSE_WORKBENCH_COURSE (relative to the checkout), else the built-in course.
+MILESTONES_LINK = "milestones"
+COURSE_VAR = "COURSE_WORKBENCH_COURSE"
+DEFAULT_COURSE = os.path.join("courses", "robotics_labs")
 
 
 class StartError(Exception):
@@ -247,6 +253,22 @@ def desktop_env(course: Course, state: str, port: int) -> Dict[str, str]:
             DISPLAY_FILE_VAR: os.path.join(state, "display-%d" % port)}
 
 
+def link_milestones(home: str, checkout: str, course: str = "") -> Optional[str]:
+    """`home`/milestones, a link to the course's milestone pages (`<course>/milestones` in the
+    checkout), made when missing; None when the course has none, or when the student has a file or
+    folder of that name (theirs stays)."""
+    pages = os.path.join(checkout, course or DEFAULT_COURSE, "milestones")
+    link = os.path.join(home, MILESTONES_LINK)
+    if not os.path.isdir(pages):
+        return None
+    if os.path.islink(link) and os.readlink(link) == pages:
+        return link
+    if os.path.lexists(link):
+        return None
+    os.symlink(pages, link)
+    return link
+
+
 def main(argv: Optional[Sequence[str]] = None, env: Optional[Mapping[str, str]] = None) -> int:
     env = dict(os.environ if env is None else env)
     args = parse(sys.argv[1:] if argv is None else argv, env)
@@ -284,6 +306,10 @@ def main(argv: Optional[Sequence[str]] = None, env: Optional[Mapping[str, str]] 
     if "ROS_IP" not in base:
         base.setdefault("ROS_HOSTNAME", "localhost")
     if hub:
+        try:  # the home is the container's own
+            link_milestones(home, course.checkout, env.get(COURSE_VAR, ""))
+        except OSError as err:  # the workbench starts all the same, without the milestone pages
+            print("workbench: no ~/%s: %s" % (MILESTONES_LINK, err), file=sys.stderr, flush=True)
         print("workbench: jupyterhub-singleuser for %s, your files in %s, your workspace %s" % (
             env.get("JUPYTERHUB_USER", "?"), root_dir, args.overlay), flush=True)
     else:

@@ -75,8 +75,7 @@ class Checkpoint2Milestone(MilestoneCase):
         self.assertEqual(topic_types().get(topic), "geometry_msgs/Twist", causes.finding(
             "wrong_type", "%s must carry geometry_msgs/Twist, the type turtlesim reads (rostopic type %s)"
             % (topic, topic)))
-        self.assertTrue(kp.wait_connected(self.commands[FIRST], started.registration.node),
-                        causes.finding("silent", "could not subscribe to %s" % topic))
+        self.fail_on(kp.connect(self.commands[FIRST], started.registration.node))
         result, problem = kp.discover_keymap(started.keyboard, self.commands[FIRST], "%s %s" % (script, FIRST),
                                              motion=self.motion(FIRST))
         if problem:
@@ -100,8 +99,7 @@ class Checkpoint2Milestone(MilestoneCase):
                                        "(`%s %s`, node %s): two nodes cannot have the same name; give each its own "
                                        "(e.g. anonymous=True or the turtle's name)"
                                        % (script, SECOND, script, FIRST, started.registration.node)))
-        self.assertTrue(kp.wait_connected(self.commands[SECOND], registered.node),
-                        causes.finding("silent", "could not subscribe to %s" % topic2))
+        self.fail_on(kp.connect(self.commands[SECOND], registered.node))
         # different inputs: the second turtle's keyboard drives it (and only it), then a left turn on the first's
         mark = self.commands[FIRST].count
         _, problem = kp.discover_keymap(second, self.commands[SECOND], "%s %s" % (script, SECOND),

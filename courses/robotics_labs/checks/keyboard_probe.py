@@ -17,7 +17,7 @@ import rosgraph
 import rospy
 
 from course_format import causes
-from course_milestones.discovery import CALLER, node_uris, sends_to
+from course_milestones.discovery import CALLER, node_uris, published_type, sends_to
 from course_milestones.students import RAW_WAIT, REGISTER_TIMEOUT, wait_for_publisher
 from course_checks.artifacts import artifact_path
 from course_checks.keyboard import PtyKeyboard
@@ -42,6 +42,8 @@ def wait_connected(recorder: TopicRecorder, node: Optional[str] = None, timeout:
         uri = rosgraph.Master(CALLER).lookupNode(node) if node else None
     except rosgraph.MasterException:
         return False
+    if uri is not None and wrong_type(recorder, uri):
+        return False  # it can never connect: the check says why (wrong_type)
 
     def connected():
         return any(uri is None or c.endpoint_id == uri for c in recorder.sub.impl.connections)
@@ -51,6 +53,36 @@ def wait_connected(recorder: TopicRecorder, node: Optional[str] = None, timeout:
         me, topic = rospy.get_caller_id(), recorder.sub.resolved_name
         wait_for(lambda: sends_to(uri, topic, me) is not False, PUBLISHER_SIDE_WAIT)
     return True
+
+
+def connect(recorder: TopicRecorder, node: str) -> Optional[str]:
+    """wait_connected, as a check's failure: None once connected, else why not (the node publishes
+    the topic with another type: wrong_type; else silent)."""
+    if wait_connected(recorder, node):
+        return None
+    return type_problem(recorder, node) or causes.finding("silent", "could not subscribe to %s"
+                                                          % recorder.sub.resolved_name)
+
+
+def wrong_type(recorder: TopicRecorder, node_uri: str) -> Optional[str]:
+    """The type the node publishes the recorder's topic with, when it is not the recorder's (a
+    Twist subscriber never connects to an Empty publisher: no key would ever be answered)."""
+    sent = published_type(node_uri, recorder.sub.resolved_name)
+    wanted = recorder.sub.data_class._type
+    return sent if sent and sent != wanted else None
+
+
+def type_problem(recorder: TopicRecorder, node: str) -> Optional[str]:
+    """A sentence (cause wrong_type) when `node` publishes the recorder's topic with another type."""
+    try:
+        sent = wrong_type(recorder, rosgraph.Master(CALLER).lookupNode(node))
+    except rosgraph.MasterException:
+        return None
+    if not sent:
+        return None
+    return causes.finding("wrong_type", "%s publishes %s as %s; it must carry %s, the type the robot's simulator "
+                          "subscribes with, or no command reaches it" % (node, recorder.sub.resolved_name, sent,
+                                                                         recorder.sub.data_class._type))
 
 
 class Motion(NamedTuple):

@@ -77,8 +77,7 @@ class LaunchParamsMilestone(MilestoneCase):
             for key in found:
                 self.assertTrue(rospy.has_param(key), causes.finding("wrong_launch", "%s is not on the parameter "
                                                                      "server (#2.3.6)" % key))
-        self.assertTrue(kp.wait_connected(self.commands, teleop.node),
-                        causes.finding("silent", "could not subscribe to %s" % TOPIC))
+        self.fail_on(kp.connect(self.commands, teleop.node))
         result, problem = kp.discover_keymap(launch, self.commands, "%s (%s)" % (teleop.node, LAUNCH),
                                              motion=self.motion())
         if problem:
@@ -108,8 +107,7 @@ class LaunchParamsMilestone(MilestoneCase):
         self.processes.append(again)
         self.assertIsNotNone(registered, causes.finding("not_published", "%s, started again with %s, publishes no %s"
                                                         % (node.type, changed, TOPIC)))
-        self.assertTrue(kp.wait_connected(self.commands, registered.node),
-                        causes.finding("silent", "could not subscribe to %s" % TOPIC))
+        self.fail_on(kp.connect(self.commands, registered.node))
         rescaled, problem = kp.discover_keymap(again, self.commands, "%s (rescaled)" % registered.node,
                                                first=result.keymap)
         if problem:

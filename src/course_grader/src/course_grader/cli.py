@@ -109,6 +109,10 @@ def parse(argv: Optional[List[str]]) -> argparse.Namespace:
     parser.add_argument("--early", type=int, default=DEFAULT_EARLY,
                         help="runs started while a submission builds, if no run is under way; their checks "
                              "wait until the build is done (default %(default)s, 0: none)")
+    parser.add_argument("--share-builds", action="store_true",
+                        help="build once the submissions whose build inputs are the same (they differ only in "
+                             "Python and launch files), the others getting a copy: course-lint's mutants of "
+                             "one reference; never for a class (course_grader.shared_builds)")
     parser.add_argument("--only", action="extend", nargs="+", metavar="M",
                         help="grade only these milestones (--only a b, or --only a --only b)")
     parser.add_argument("--only-from", metavar="FILE",
@@ -317,7 +321,8 @@ def main(argv: Optional[List[str]] = None) -> int:
                                             opts.verbose or reference, [s.path for s in subs if s.path],
                                             opts.builds, opts.disk * MiB,
                                             [a for a in (course.solution, course.samples) if a],
-                                            early=opts.early, typical=course_file.typical_durations(course)))
+                                            early=opts.early, typical=course_file.typical_durations(course),
+                                            share_builds=opts.share_builds))
     except levels.Unavailable as err:
         release_output(out)
         print("cannot grade: %s" % err, file=sys.stderr)

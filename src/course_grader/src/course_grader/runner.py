@@ -44,7 +44,7 @@ from course_checks.run_gate import ENV_VAR as GATE_VAR
 from course_sandbox import leftovers, procs
 from course_sandbox.policy import ENV_VAR as POLICY_VAR, Limits
 
-from course_grader import gradescope, ros2_packages, submissions, verdict, workspace
+from course_grader import gradescope, ros2_packages, shared_builds, submissions, verdict, workspace
 from course_grader.early_runs import GO, RESTART, EarlyRun
 from course_grader.class_outputs import WORK_DIR
 from course_grader.sandboxing import SandboxPlan
@@ -153,6 +153,7 @@ class Options(NamedTuple):
     answers: Sequence[str] = ()  # the course's reference solution and samples: hidden from student code
     early: int = 0  # runs started while a submission builds, when no other run is under way (early_runs)
     typical: Mapping[str, float] = {}  # the course's typical run times (course_file.typical_durations)
+    share_builds: bool = False  # submissions with the same build inputs built once (shared_builds; course-lint's)
 
 
 class _Progress:
@@ -200,6 +201,7 @@ class Grader:
         self._pool = ThreadPoolExecutor(max(1, options.jobs), thread_name_prefix="grade")
         self._builds = ThreadPoolExecutor(max(1, options.builds), thread_name_prefix="build")
         self._setup = workspace.course_setup()
+        self._shared = shared_builds.BuildShare() if options.share_builds else None
         self.sandbox = SandboxPlan(options.out, workspace.course_root(self._setup), options.sources,
                                    reference=workspace.reference_folders(self._setup) + [
                                        a for a in options.answers if a],
@@ -378,8 +380,7 @@ class Grader:
         """Build the overlay and start (or open) every runnable milestone's run, or give the
         build's verdicts. `early`: the runs already started; those left in it are voided."""
         setup = self._setup
-        built = workspace.build(ws, setup, self.sandbox, self._work_dir(sub.name, "home"),
-                                self._work_dir(sub.name, "build.log"))
+        built = self._build(sub, ws)
         if self._stop.is_set():  # the build may have been ended half-way
             self._fail_all(sub, runnable, verdict.INTERRUPTED)
             return
@@ -408,6 +409,26 @@ class Grader:
             if run is not None and run.restart(args):
                 continue
             self._submit(self._run, sub, m, *args)
+
+    def _build(self, sub: Submission, ws: str) -> workspace.BuildResult:
+        """catkin_make in `ws`; with share_builds, a copy of an earlier build of the same inputs
+        (course_grader.shared_builds) when there is one."""
+        home, log = self._work_dir(sub.name, "home"), self._work_dir(sub.name, "build.log")
+        if self._shared is None:
+            return workspace.build(ws, self._setup, self.sandbox, home, log)
+        key = shared_builds.inputs_key(os.path.join(ws, "src"))
+        first, donor = self._shared.claim(key, ws)
+        if not first:
+            copied = workspace.reuse(donor, ws, self.sandbox, home, log)
+            if copied is not None:
+                return copied
+            return workspace.build(ws, self._setup, self.sandbox, home, log)
+        built = None
+        try:
+            built = workspace.build(ws, self._setup, self.sandbox, home, log)
+        finally:
+            self._shared.done(key, ws, bool(built and built.ok))
+        return built
 
     def _run_dirs(self, sub: Submission, m: Milestone) -> Tuple[str, str, str]:
         """A run's fresh folders: its work folder, the student's home in it (given to the sandbox

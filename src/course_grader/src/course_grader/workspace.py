@@ -24,7 +24,7 @@ from course_sandbox.run import LimitHits, capture_oneshot, run_oneshot
 from course_checks import run_gate
 from course_checks.isolation import sourced_env
 
-from course_grader import build_errors, build_order
+from course_grader import build_errors, build_order, shared_builds
 from course_grader.sandboxing import SandboxPlan, overlay_paths, parse_env
 from course_grader.submissions import Package
 
@@ -162,12 +162,39 @@ def build(ws: str, setup_bash: str, plan: SandboxPlan, home: str, log_path: str,
     if unordered:
         return BuildResult(False, log_path, causes.finding("no_add_dependencies",
                                                            "\n".join(u.reason() for u in unordered)), None)
+    return _overlay(ws, policy, env, log_path)
+
+
+def _overlay(ws: str, policy, env: Dict[str, str], log_path: str) -> BuildResult:
+    """The built overlay's environments: the student's sourced inside the sandbox (its setup.bash
+    and env hooks are the student's), the trusted side's computed."""
     source = "source %s >/dev/null 2>&1; exec env -0" % shlex.quote(os.path.join(ws, "devel", "setup.bash"))
     code, out = capture_oneshot(policy, ["bash", "-c", source], ws, env)
     student_env = parse_env(out) if code == 0 else None
     if not student_env:
         return BuildResult(False, log_path, "sourcing the overlay's devel/setup.bash failed (exit code %s)" % code, None)
     return BuildResult(True, log_path, "", trusted_env(ws), student_env)
+
+
+def reuse(donor: str, ws: str, plan: SandboxPlan, home: str, log_path: str) -> Optional[BuildResult]:
+    """`ws` built by copying the build of `donor`, a workspace with the same build inputs
+    (course_grader.shared_builds: only for `grade --share-builds`); None when it cannot be copied
+    (build `ws` as usual). Its log says so, then holds the donor's."""
+    why = shared_builds.relocate(donor, ws)
+    if why:
+        return None
+    plan.give(ws)
+    plan.give(home)
+    with open(log_path, "w") as out:
+        out.write("not built: the build of %s, whose build inputs are the same, copied (grade --share-builds)\n"
+                  % donor)
+        try:
+            with open(os.path.join(os.path.dirname(donor), os.path.basename(log_path)), errors="replace") as f:
+                shutil.copyfileobj(f, out)
+        except OSError:
+            pass
+    policy = plan.policy([ws, home], home, disk_folder=os.path.dirname(ws))
+    return _overlay(ws, policy, dict(trusted_base_env(), HOME=home), log_path)
 
 
 def _tail(path: str, size: int = 200_000) -> str:

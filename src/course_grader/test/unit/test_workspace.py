@@ -8,14 +8,6 @@ from course_grader import workspace
 from course_sandbox import env_paths
 
 
-@pytest.fixture
-def course():
-    try:
-        return workspace.course_setup()
-    except FileNotFoundError:
-        pytest.skip("no course workspace is built")
-
-
 def test_the_course_environment_has_no_reference_folder_on_any_path(course, tmp_path):
     root = workspace.course_root(course)
     devel = os.path.dirname(course)

@@ -23,7 +23,7 @@ from typing import Dict, List, Optional
 from course_format import course_file
 
 from course_lint import generic
-from course_lint.lint import EQUIVALENT, NOT_RUN, STATUSES, MilestoneLint, Outcome, lint_milestone
+from course_lint.lint import EQUIVALENT, NOT_RUN, STATUSES, MilestoneLint, Outcome, lint_course
 from course_lint.mutants import OPERATORS, by_names
 
 EXIT_REFERENCE_FAILS = 1
@@ -35,7 +35,8 @@ def parse(argv: Optional[List[str]]) -> argparse.Namespace:
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("course", metavar="DIR", help="the course folder (holding course.yaml)")
     parser.add_argument("--only", action="append", metavar="M", help="lint only milestone M (repeatable)")
-    parser.add_argument("--jobs", "-j", type=int, default=2, help="the grader's runs at once (default 2)")
+    parser.add_argument("--jobs", "-j", type=int, help="the grader's runs at once (default: the grader's own, "
+                                                       "3 per core as the memory allows)")
     parser.add_argument("--operators", metavar="A,B", help="only these mutant operators (default: all, see --list)")
     parser.add_argument("--keep", metavar="DIR", help="keep the mutants' folders and the grader's output in DIR")
     parser.add_argument("--mutmut", action="store_true",
@@ -153,20 +154,21 @@ def main(argv: Optional[List[str]] = None) -> int:
     work = os.path.abspath(opts.keep) if opts.keep else tempfile.mkdtemp(prefix="course-lint-")
     if not opts.keep:
         os.chmod(work, 0o755)  # the grader's sandbox user reads the mutants and writes below
-    results = []
+    chosen = []
+    for milestone in course.milestones:
+        if opts.only and milestone.name not in opts.only:
+            continue
+        if not milestone.packages:
+            print("%s  not linted: it names no package (it checks the course workspace)" % milestone.name)
+            continue
+        chosen.append(milestone)
     try:
-        for milestone in course.milestones:
-            if opts.only and milestone.name not in opts.only:
-                continue
-            if not milestone.packages:
-                print("%s  not linted: it names no package (it checks the course workspace)" % milestone.name)
-                continue
-            result = lint_milestone(course, milestone, work, opts.jobs, operators, grading=not opts.list,
-                                    probe=not opts.grade_all)
-            results.append(result)
+        results = lint_course(course, chosen, work, opts.jobs, operators, grading=not opts.list,
+                              probe=not opts.grade_all)
+        for result in results:
             print("\n".join(listing(result)) if opts.list else milestone_line(result), flush=True)
             if result.reference_fails and not opts.list:
-                print("  the reference fails %s: %s" % (milestone.name, result.reference.reason), flush=True)
+                print("  the reference fails %s: %s" % (result.milestone.name, result.reference.reason), flush=True)
             for note in result.notes:
                 print("  note: %s" % note)
     finally:

@@ -34,6 +34,8 @@ from course_lint import used_files
 from course_lint.mutants import Mutant, Operator, package_mutants
 
 REFERENCE = "reference"
+# In each submission handed to the grader: the milestones it is graded on (the grader's --only-from).
+ONLY_FILE = "course_lint_only.json"
 GRADE = ["rosrun", "course_grader", "grade"]
 LOG_TAIL_LINES = 20
 STARTS = ("rosrun", "roslaunch")  # a start step's parameters naming what it starts
@@ -139,33 +141,34 @@ def milestone_mutants(milestone: Milestone, folders: Dict[str, str], operators: 
     return numbered(sorted(found, key=lambda m: order[m.operator.name])), notes
 
 
-def lay_out(base: str, milestone: Milestone, folders: Dict[str, str],
-            entries: Sequence[Tuple[str, Optional[Mutant]]]) -> List[str]:
-    """`base/<milestone>__<name>/<package folder>/...` for each (name, mutant) (None: the reference)."""
-    subs = []
-    for name, mutant in entries:
-        sub = os.path.join(base, "%s__%s" % (milestone.name, name))
-        shutil.rmtree(sub, ignore_errors=True)  # an earlier run's, kept with --keep
-        for package in milestone.packages:
-            folder = folders[package]
-            shutil.copytree(folder, os.path.join(sub, os.path.basename(folder)), symlinks=True)
-        if mutant is not None:
-            path = os.path.join(sub, mutant.package, mutant.path)
-            mode = os.stat(path).st_mode
-            with open(path, "w", encoding="utf-8") as f:
-                f.write(mutant.text)
-            os.chmod(path, mode)
-        subs.append(sub)
-    return subs
+def lay_out(sub: str, milestone: Milestone, folders: Dict[str, str], mutant: Optional[Mutant],
+            graded_on: Sequence[str]) -> str:
+    """`sub/<package folder>/...`: the milestone's packages of the reference, with the mutant's
+    change (None: the reference), and ONLY_FILE naming the milestones it is graded on."""
+    shutil.rmtree(sub, ignore_errors=True)  # an earlier run's, kept with --keep
+    for package in milestone.packages:
+        folder = folders[package]
+        shutil.copytree(folder, os.path.join(sub, os.path.basename(folder)), symlinks=True)
+    if mutant is not None:
+        path = os.path.join(sub, mutant.package, mutant.path)
+        mode = os.stat(path).st_mode
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(mutant.text)
+        os.chmod(path, mode)
+    with open(os.path.join(sub, ONLY_FILE), "w") as f:
+        json.dump({name: "course-lint" for name in graded_on}, f)
+    return sub
 
 
-def grade(course: Course, milestone: Milestone, subs: Sequence[str], out: str, jobs: int) -> Tuple[int, str]:
-    """Run the grader on the submissions; its exit code and its log's path."""
+def grade(course: Course, subs: Sequence[str], out: str, jobs: Optional[int]) -> Tuple[int, str]:
+    """Run the grader on the submissions, each graded on the milestones its ONLY_FILE names; its
+    exit code and its log's path."""
     shutil.rmtree(out, ignore_errors=True)
     os.makedirs(out)
     log = os.path.join(out, "grade.log")
-    command = GRADE + ["--course", course.root, "--only", milestone.name, "--jobs", str(jobs),
-                       "--out", out] + list(subs)
+    command = GRADE + ["--course", course.root, "--only-from", ONLY_FILE, "--share-builds", "--out", out]
+    command += ["--jobs", str(jobs)] if jobs else []
+    command += list(subs)
     with open(log, "w") as f:
         code = subprocess.call(command, stdout=f, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL)
     return code, log
@@ -234,60 +237,114 @@ def annotated(milestone: Milestone, outcomes: Sequence[Outcome], operators: Sequ
     return result, problems
 
 
-def lint_milestone(course: Course, milestone: Milestone, work: str, jobs: int,
-                   operators: Sequence[Operator], grading: bool = True, probe: bool = True) -> MilestoneLint:
-    """The reference's and every mutant's outcome (with grading False: the mutants, none graded).
-    With `probe`, the reference is graded first, alone, with course-lint's probe (course_lint.ran),
-    and the mutants whose change never ran are not graded; without it, the reference and every
-    mutant are graded in one grader run, as before the statuses (none is not run)."""
+class Plan(NamedTuple):
+    """A milestone's mutants before grading, with what the reference's run left not run."""
+    milestone: Milestone
+    folders: Dict[str, str]  # package name -> the reference's folder
+    mutants: List[Tuple[str, Mutant]]
+    notes: List[str]
+    missing: str = ""  # why the milestone cannot be linted (its packages are not in the reference)
+
+
+def plan(course: Course, milestone: Milestone, operators: Sequence[Operator]) -> Plan:
     folders = reference_packages(course.solution)
     missing = [p for p in milestone.packages if p not in folders]
     if missing:
         why = ("the reference solution (%s) holds no package %s" % (course.solution, ", ".join(missing))
                if course.solution else "the course has no reference solution folder (course.yaml's solution)")
-        return MilestoneLint(milestone, Outcome(REFERENCE, None, False, False, why), [], [])
+        return Plan(milestone, folders, [], [], why)
     mutants, notes = milestone_mutants(milestone, folders, operators)
+    return Plan(milestone, folders, mutants, notes)
+
+
+def shared_key(p: Plan, mutant: Mutant) -> Tuple:
+    """Mutants of several milestones with the same key are one submission, built and graded once on
+    each of them: the same packages, the same file changed the same way."""
+    return (tuple(sorted(p.milestone.packages)), mutant.package, mutant.path, mutant.text)
+
+
+def lint_course(course: Course, milestones: Sequence[Milestone], work: str, jobs: Optional[int],
+                operators: Sequence[Operator], grading: bool = True, probe: bool = True) -> List[MilestoneLint]:
+    """Each milestone's reference and mutant outcomes (with grading False: the mutants, none graded).
+
+    Two grader runs for the whole course, every submission in them graded on its own milestones
+    (ONLY_FILE), so the machine's cores stay busy across milestones: with `probe`, every
+    milestone's reference first, each with course-lint's probe (course_lint.ran); then every mutant
+    whose change did run, a mutant shared by several milestones (shared_key) built and run once for
+    all of them, with the references that failed with the probe. Without `probe`, the references and
+    every mutant in one run, as before the statuses (none is not run)."""
+    plans = [plan(course, m, operators) for m in milestones]
     if not grading:
-        return MilestoneLint(milestone, Outcome(REFERENCE, None, False, False, "not graded"),
-                             [Outcome(name, m, False, False, "not graded") for name, m in mutants], notes)
-    base, out = os.path.join(work, "submissions"), os.path.join(work, "grades", milestone.name)
-    reference: Optional[Outcome] = None
-    why_not_run: Dict[str, str] = {}
-    kinds: Dict[str, str] = {}
-    if probe and any(os.path.basename(m.path) != used_files.CMAKE for _, m in mutants):  # the build always runs
-        sub, = lay_out(base, milestone, folders, [(REFERENCE, None)])
-        measure.lay_out(sub)
-        say("%s: grading the reference, measuring what it runs ..." % milestone.name)
-        probed = run_grader(course, milestone, [sub], os.path.join(out, REFERENCE), jobs, notes)
-        outcome = outcome_of(REFERENCE, None, probed, sub, milestone.name)
-        if outcome.graded and outcome.passed:
-            reference = outcome
-            ran = measure.read(measure.workspace(probed, os.path.basename(sub)))
-            notes += ran.notes()
-            kinds = measure.kinds_measured(ran)
-            why_not_run = {name: not_run_of(m, folders, milestone, ran) for name, m in mutants}
-        else:
-            notes.append("the reference failed with course-lint's probe beside it (%s): graded again without "
-                         "it, and every mutant graded" % (outcome.reason.splitlines() or [""])[0][:200])
-    entries = [(name, m) for name, m in mutants if not why_not_run.get(name)]
-    if reference is None:
-        entries = [(REFERENCE, None)] + entries
-    outcomes = {}
-    if entries:
-        subs = lay_out(base, milestone, folders, entries)
-        say("%s: grading %s%d mutant(s) (%d not run) ..." % (
-            milestone.name, "the reference and " if reference is None else "", len(entries) - (reference is None),
-            len(mutants) - len(entries) + (reference is None)))
-        folder = os.path.join(out, "mutants" if len(entries) > (reference is None) else REFERENCE)
-        done = run_grader(course, milestone, subs, folder, jobs, notes)
-        outcomes = {name: outcome_of(name, m, done, sub, milestone.name) for (name, m), sub in zip(entries, subs)}
-    if reference is None:
-        reference = outcomes.pop(REFERENCE)
-    results = [outcomes[name] if name in outcomes else
-               Outcome(name, m, False, False, "not graded: not run", NOT_RUN, why_not_run[name])
-               for name, m in mutants]
-    results, problems = annotated(milestone, results, operators)
-    return MilestoneLint(milestone, reference, results, notes, tuple(problems), tuple(sorted(kinds.items())))
+        return [MilestoneLint(p.milestone, Outcome(REFERENCE, None, False, False, p.missing or "not graded"),
+                              [Outcome(name, m, False, False, "not graded") for name, m in p.mutants], p.notes)
+                for p in plans]
+    base, grades = os.path.join(work, "submissions"), os.path.join(work, "grades")
+    references: Dict[str, Outcome] = {}
+    why_not_run: Dict[Tuple[str, str], str] = {}
+    kinds: Dict[str, Dict[str, str]] = {}
+    probed = [p for p in plans if not p.missing and probe and
+              any(os.path.basename(m.path) != used_files.CMAKE for _, m in p.mutants)]  # the build always runs
+    if probed:
+        subs = []
+        for p in probed:
+            sub = lay_out(os.path.join(base, "%s__%s" % (p.milestone.name, REFERENCE)), p.milestone, p.folders,
+                          None, [p.milestone.name])
+            measure.lay_out(sub)
+            subs.append(sub)
+        say("grading the reference of %d milestone(s), measuring what each runs ..." % len(probed))
+        out = run_grader(course, subs, os.path.join(grades, REFERENCE), jobs, [p.notes for p in probed])
+        for p, sub in zip(probed, subs):
+            outcome = outcome_of(REFERENCE, None, out, sub, p.milestone.name)
+            if outcome.graded and outcome.passed:
+                references[p.milestone.name] = outcome
+                ran = measure.read(measure.workspace(out, os.path.basename(sub)))
+                p.notes.extend(ran.notes())
+                kinds[p.milestone.name] = measure.kinds_measured(ran)
+                for name, m in p.mutants:
+                    why_not_run[(p.milestone.name, name)] = not_run_of(m, p.folders, p.milestone, ran)
+            else:
+                p.notes.append("the reference failed with course-lint's probe beside it (%s): graded again without "
+                               "it, and every mutant graded" % (outcome.reason.splitlines() or [""])[0][:200])
+    # The second run: one submission per shared key (and per reference to grade), with its milestones.
+    groups: Dict[Tuple, List[Tuple[Plan, str, Optional[Mutant]]]] = {}
+    for p in plans:
+        if p.missing:
+            continue
+        if p.milestone.name not in references:
+            groups[(REFERENCE, p.milestone.name)] = [(p, REFERENCE, None)]
+        for name, m in p.mutants:
+            if not why_not_run.get((p.milestone.name, name)):
+                groups.setdefault(shared_key(p, m), []).append((p, name, m))
+    outcomes: Dict[Tuple[str, str], Outcome] = {}
+    if groups:
+        subs = []
+        for members in groups.values():
+            first, name, mutant = members[0]
+            subs.append(lay_out(os.path.join(base, "%s__%s" % (first.milestone.name, name)), first.milestone,
+                                first.folders, mutant, [p.milestone.name for p, _, _ in members]))
+        graded = sum(len(members) for members in groups.values())
+        say("grading %d mutant(s) of %d milestone(s) in %d submission(s) (%d not run) ..." % (
+            graded - sum(1 for key in groups if key[0] == REFERENCE), len(plans), len(subs),
+            sum(1 for why in why_not_run.values() if why)))
+        involved = [p.notes for p in plans if not p.missing]
+        out = run_grader(course, subs, os.path.join(grades, "mutants"), jobs, involved)
+        for members, sub in zip(groups.values(), subs):
+            for p, name, m in members:
+                outcomes[(p.milestone.name, name)] = outcome_of(name, m, out, sub, p.milestone.name)
+    results = []
+    for p in plans:
+        if p.missing:
+            results.append(MilestoneLint(p.milestone, Outcome(REFERENCE, None, False, False, p.missing), [], p.notes))
+            continue
+        key = p.milestone.name
+        reference = references.get(key) or outcomes[(key, REFERENCE)]
+        found = [outcomes[(key, name)] if (key, name) in outcomes else
+                 Outcome(name, m, False, False, "not graded: not run", NOT_RUN, why_not_run[(key, name)])
+                 for name, m in p.mutants]
+        found, problems = annotated(p.milestone, found, operators)
+        results.append(MilestoneLint(p.milestone, reference, found, p.notes, tuple(problems),
+                                     tuple(sorted(kinds.get(key, {}).items()))))
+    return results
 
 
 def not_run_of(mutant: Mutant, folders: Dict[str, str], milestone: Milestone, ran: measure.Ran) -> str:
@@ -312,10 +369,11 @@ def say(line: str) -> None:
     print(line, file=sys.stderr, flush=True)
 
 
-def run_grader(course: Course, milestone: Milestone, subs: Sequence[str], out: str, jobs: int,
-               notes: List[str]) -> str:
-    """Grade the submissions into `out`; a note when the grader exits other than 0. Returns `out`."""
-    code, log = grade(course, milestone, subs, out, jobs)
+def run_grader(course: Course, subs: Sequence[str], out: str, jobs: Optional[int], notes: Sequence[List[str]]) -> str:
+    """Grade the submissions into `out`; a note in each of `notes` when the grader exits other than 0.
+    Returns `out`."""
+    code, log = grade(course, subs, out, jobs)
     if code != 0:
-        notes.append("the grader exited %d (log: %s):\n%s" % (code, log, log_tail(log)))
+        for each in notes:
+            each.append("the grader exited %d (log: %s):\n%s" % (code, log, log_tail(log)))
     return out

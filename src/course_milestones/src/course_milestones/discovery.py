@@ -205,6 +205,22 @@ def sends_to(node_uri: str, topic: str, subscriber: str) -> Optional[bool]:
                for c in info)
 
 
+def published_type(node_uri: str, topic: str) -> Optional[str]:
+    """The message type the node at `node_uri` publishes `topic` with, by its own word (the slave
+    API's getPublications). The master keeps the first type registered for a topic, a subscriber's
+    too (a check's recorder that subscribed first): only the node says what it sends. None when
+    it does not publish the topic or cannot tell."""
+    try:
+        code, _, publications = xmlrpc.client.ServerProxy(
+            node_uri, transport=TimedTransport(NODE_CALL_TIMEOUT_S)).getPublications(CALLER)
+    except Exception:  # noqa: BLE001 - the node's answer may be anything (bad XML, a dropped line, no server)
+        return None
+    if code != 1 or not isinstance(publications, list):
+        return None
+    return next((p[1] for p in publications if isinstance(p, list) and len(p) == 2 and p[0] == topic
+                 and isinstance(p[1], str)), None)
+
+
 def topic_types(caller_id: str = CALLER) -> Dict[str, str]:
     """Topic name -> message type as the master knows it (the publisher's declared type)."""
     return dict(rosgraph.Master(caller_id).getTopicTypes())

@@ -14,9 +14,9 @@ call super(): each setUpClass a subclass defines is wrapped when the class is ma
 """
 import functools
 import unittest
+from typing import Optional
 
 from course_checks import run_gate
-
 from course_format import causes
 from course_checks.artifacts import artifact_dir
 
@@ -76,3 +76,9 @@ class MilestoneCase(unittest.TestCase):
     def fail(self, msg=None):
         _record(msg, self.failure_cause)
         super().fail(msg)
+
+    def fail_on(self, problem: Optional[str]) -> None:
+        """Fail with `problem`, a sentence from a helper that returns one when something is wrong
+        (None: nothing is)."""
+        if problem:
+            self.fail(problem)

@@ -47,3 +47,16 @@ def test_a_roscpp_publisher_lists_its_subscriber(master):
     assert wait_for(lambda: discovery.sends_to(uri, "/relay_out", "/relay_listener"), STARTUP_S), \
         listener.output()[-500:]
     assert discovery.sends_to(uri, "/relay_out", "/listener") is False
+
+
+def test_a_node_says_the_type_it_publishes_though_the_master_keeps_a_subscribers(master):
+    # a Twist subscriber registers first: the master's type for the topic is then Twist
+    master.start(["/usr/bin/python3", "-c", "import rospy; from geometry_msgs.msg import Twist; "
+                  "rospy.init_node('typed_listener'); rospy.Subscriber('/typed_cmd', Twist, print); rospy.spin()"],
+                 "typed_listener")
+    node_uri(master, "/typed_listener")
+    master.start(["rostopic", "pub", "-r", "5", "/typed_cmd", "std_msgs/Empty", "__name:=typed_talker"], "typed_talker")
+    uri = node_uri(master, "/typed_talker")
+    assert wait_for(lambda: discovery.published_type(uri, "/typed_cmd"), STARTUP_S) == "std_msgs/Empty"
+    assert discovery.published_type(uri, "/nothing_here") is None
+    assert discovery.published_type("http://127.0.0.1:9/", "/typed_cmd") is None  # no node answers there

@@ -154,18 +154,16 @@ def main(argv: Optional[List[str]] = None) -> int:
     work = os.path.abspath(opts.keep) if opts.keep else tempfile.mkdtemp(prefix="course-lint-")
     if not opts.keep:
         os.chmod(work, 0o755)  # the grader's sandbox user reads the mutants and writes below
-    chosen = []
-    for milestone in course.milestones:
-        if opts.only and milestone.name not in opts.only:
-            continue
-        if not milestone.packages:
-            print("%s  not linted: it names no package (it checks the course workspace)" % milestone.name)
-            continue
-        chosen.append(milestone)
+    chosen = [m for m in course.milestones if not opts.only or m.name in opts.only]
     try:
-        results = lint_course(course, chosen, work, opts.jobs, operators, grading=not opts.list,
-                              probe=not opts.grade_all)
-        for result in results:
+        results = lint_course(course, [m for m in chosen if m.packages], work, opts.jobs, operators,
+                              grading=not opts.list, probe=not opts.grade_all)
+        linted = {r.milestone.name: r for r in results}
+        for milestone in chosen:  # in the course's order
+            result = linted.get(milestone.name)
+            if result is None:
+                print("%s  not linted: it names no package (it checks the course workspace)" % milestone.name)
+                continue
             print("\n".join(listing(result)) if opts.list else milestone_line(result), flush=True)
             if result.reference_fails and not opts.list:
                 print("  the reference fails %s: %s" % (result.milestone.name, result.reference.reason), flush=True)

@@ -58,6 +58,7 @@ OPERATORS: Tuple[Operator, ...] = (
     Operator("pen_off", "the pen colour off: r, g, b each 255 minus itself", {PYTHON: py.pen_off}),
     Operator("param_ignored", "a parameter ignored: get_param's default used instead", {PYTHON: py.param_ignored}),
     Operator("param_changed", "a launch file's <param> value changed", {LAUNCH: tx.param_changed}),
+    Operator("node_left_out", "a launch file's <node> left out", {LAUNCH: tx.node_left_out}),
     Operator("service_wrong", "a service answers wrong: its response's values left empty", {PYTHON: py.service_wrong}),
     Operator("msg_left_out", "a message, service or action file left out of the build",
              {CMAKE: tx.msg_left_out}),

@@ -22,6 +22,8 @@ CMAKE_KEYWORDS = frozenset({"DIRECTORY", "FILES", "NOINSTALL"})
 XML_COMMENT = re.compile(r"<!--.*?-->", re.DOTALL)
 REMAP_TAG = re.compile(r"<remap\b[^>]*>")
 PARAM_TAG = re.compile(r"<param\b[^>]*>")
+# A launch file's node, with no body (`<node .../>`) or with one (its params, remaps), up to its end tag.
+NODE_TAG = re.compile(r"<node\b(?:[^>]*/>|[^>]*[^/]>.*?</node\s*>)", re.DOTALL)
 TO_ATTR = re.compile(r"""\bto\s*=\s*(["'])(.*?)\1""", re.DOTALL)
 VALUE_ATTR = re.compile(r"""\bvalue\s*=\s*(["'])(.*?)\1""", re.DOTALL)
 
@@ -147,3 +149,8 @@ def param_changed(text: str) -> List[str]:
             start, end = tag.start() + value.start(2), tag.start() + value.end(2)
             found.append(text[:start] + changed_value(value.group(2)) + text[end:])
     return found
+
+
+def node_left_out(text: str) -> List[str]:
+    """One `<node>` of a launch file left out (its params and remaps with it): a node forgotten."""
+    return [without(text, tag.start(), tag.end()) for tag in outside_comments(NODE_TAG, text)]

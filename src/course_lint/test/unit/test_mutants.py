@@ -252,6 +252,28 @@ def test_launch_remap_and_params():
             'value="odom_mutant"' in changed[3]] == [True] * 4
 
 
+def test_a_launch_files_nodes_are_left_out_one_at_a_time_with_their_bodies():
+    text = """<launch>
+  <!-- <node pkg="x" type="commented" name="c"/> -->
+  <node name='teleop' pkg='turtlesim' type='turtle_teleop_key' output="screen"/>
+  <group ns="turtlesim1">
+    <node pkg="turtlesim" type="turtlesim_node" name="turtlesim">
+      <param name="background_r" value="255"/>
+    </node>
+    <node pkg="topic_tools" type="relay" name="relay" args="/turtle1/cmd_vel /turtlesim1/turtle1/cmd_vel"/>
+  </group>
+</launch>
+"""
+    found = tx.node_left_out(text)
+    assert len(found) == 3  # the commented-out node is no site
+    assert "turtle_teleop_key" not in found[0] and "turtlesim_node" in found[0]
+    assert "turtlesim_node" not in found[1] and "background_r" not in found[1] and "</group>" in found[1]
+    assert "relay" not in found[2].split("-->", 1)[1] and "turtle_teleop_key" in found[2]
+    for mutant in found:
+        assert mutant.count("\n") < text.count("\n")  # whole lines go, no blank line is left
+        assert "<launch>" in mutant and "</launch>" in mutant
+
+
 def write(folder, path, text, mode=0o644):
     full = os.path.join(folder, path)
     os.makedirs(os.path.dirname(full), exist_ok=True)

@@ -33,13 +33,17 @@ build: ## deps, then catkin_make in catkin_ws (the course) and solutions_ws (the
 demo: build ## a private master, turtlesim and a short scripted scene; the canvas saved as a PNG in output/
 	@$(ROSENV) python3 $(ROOT)/tools/demo.py
 
-test: build ## every test (pytest: src, courses, tests), in the reference overlay's environment
+# make test also sets up the hub's venv (.venv-hub: JupyterHub, ltiauthenticator, course_hub; no podman, no proxy):
+# course_hub's unit tests run the hub's own code from it (its plug-ins, the LTI launches' refusals).
+test: build ## every test (pytest: src, courses, tests), in the reference overlay's environment, and the hub's venv
+	@bash $(ROOT)/setup/install.sh --hub-venv
 	@$(REFENV) cd $(ROOT) && python3 -m pytest
 
 # make flake-hunt K=10: the whole suite K times in a row, failures per test (docs/testing.md).
 # UNTIL_FAIL=1 stops at the first failing run; ARGS="..." goes to pytest (a subset, -k ...).
 K ?= 10
 flake-hunt: build ## the whole suite K times in a row (K=10), failures per test (UNTIL_FAIL=1, ARGS=...)
+	@bash $(ROOT)/setup/install.sh --hub-venv
 	@$(REFENV) cd $(ROOT) && python3 tools/flake_hunt.py $(if $(UNTIL_FAIL),--until-fail) $(K) $(ARGS)
 
 # make grade: our reference solutions, every milestone (ONLY="teleop chatter": those milestones).

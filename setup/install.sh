@@ -8,16 +8,21 @@
 #                                   pinned PyPI packages (only when their requirements changed)
 #   bash setup/install.sh --build   make build: the same, then catkin_make in catkin_ws and, where the
 #                                   reference solutions are, in their overlay solutions_ws
+#   bash setup/install.sh --hub-venv  make test's addition: the hub's venv alone (.venv-hub: JupyterHub,
+#                                   ltiauthenticator, course_hub), whose unit tests run the hub's own code;
+#                                   no podman, no proxy (COURSE_HUB=1 adds those for make hub)
 # COURSE_JUPYTER=0 leaves JupyterLab out; COURSE_HUB=1 adds the class's hub (make hub, docs/hub.md).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 logs="$root/logs"
 TAIL_LINES=30  # of a failed step's log; a failed build prints more (its first error is further up)
 build=0
+hub_venv_only=0
 case "${1:-}" in
   --build) build=1 ;;
+  --hub-venv) hub_venv_only=1 ;;
   "") ;;
-  *) echo "usage: $0 [--build]" >&2; exit 2 ;;
+  *) echo "usage: $0 [--build | --hub-venv]" >&2; exit 2 ;;
 esac
 sudo=""
 [ "$(id -u)" -eq 0 ] || sudo="sudo"
@@ -28,6 +33,7 @@ steps_total=2  # the Debian packages, the course's venv
 [ "${COURSE_JUPYTER:-1}" = 0 ] || steps_total=$((steps_total + 1))
 [ "${COURSE_HUB:-0}" != 1 ] || steps_total=$((steps_total + 4))
 [ "$build" -eq 0 ] || steps_total=$((steps_total + 1 + have_solutions))
+[ "$hub_venv_only" -eq 0 ] || steps_total=2
 step_no=0
 
 # step_line TITLE: "[i/n] TITLE ... ", the result to follow on the same line.
@@ -100,6 +106,42 @@ missing_debs() {  # missing_debs PACKAGE...: those not installed
   done
 }
 
+# venv_step WHAT DIR REQUIREMENTS LOG [venv options]: REQUIREMENTS installed into DIR again only
+# when the file changed (its sha256 is kept in DIR).
+venv_step() {
+  local what="$1" dir="$2" requirements="$3" log="$4" want_sha
+  shift 4
+  want_sha="$(sha256sum "$requirements" | cut -d' ' -f1)"
+  if [ -x "$dir/bin/python3" ] && [ "$(cat "$dir/.requirements.sha256" 2>/dev/null)" = "$want_sha" ]; then
+    step_done "$what in ${dir#"$root"/}" "up to date"
+  else
+    step "$what into ${dir#"$root"/} with pip" "$log" "$TAIL_LINES" \
+      pip_install "$dir" "$requirements" "$dir/.requirements.sha256" "$want_sha" "$@"
+  fi
+}
+
+# hub_venv: the hub's venv (.venv-hub, requirements-hub.txt: JupyterHub, its spawner, authenticators
+# and culler), then course_hub, the course's JupyterHub plug-ins and the hub's commands (course-hub,
+# course-hub-passwords), a package of that venv (src/course_hub/pyproject.toml; its dependencies are
+# the pins), installed again whenever its sources change. Two steps: make hub's (COURSE_HUB=1), and
+# make test's alone (--hub-venv), where course_hub's unit tests run JupyterHub from it.
+hub_venv() {
+  local hub_sha
+  venv_step "JupyterHub" "$root/.venv-hub" "$root/requirements-hub.txt" "$logs/pip-venv-hub.log"
+  hub_sha="$(cd "$root/src/course_hub" && find pyproject.toml src -type f -name '*.py' -o -name pyproject.toml \
+    | LC_ALL=C sort | xargs sha256sum | sha256sum | cut -d' ' -f1)"
+  if [ "$(cat "$root/.venv-hub/.course_hub.sha256" 2>/dev/null)" = "$hub_sha" ]; then
+    step_done "course_hub in .venv-hub" "up to date"
+  else
+    step "course_hub into .venv-hub with pip" "$logs/pip-course-hub.log" "$TAIL_LINES" \
+      package_install "$root/.venv-hub" "$root/src/course_hub" "$root/.venv-hub/.course_hub.sha256" "$hub_sha"
+  fi
+}
+if [ "$hub_venv_only" -eq 1 ]; then
+  hub_venv
+  exit 0
+fi
+
 # Debian's ROS packages, and the sandbox user (course_sandbox: graded student code runs as
 # coursesandbox when the grader is root).
 mapfile -t wanted < <(grep -v -e '^#' -e '^[[:space:]]*$' "$root/setup/apt-packages.txt")
@@ -119,20 +161,6 @@ if [ "${#missing[@]}" -gt 0 ] || [ "$need_user" -eq 1 ]; then
 else
   step_done "Debian packages" "present"
 fi
-
-# venv_step WHAT DIR REQUIREMENTS LOG [venv options]: REQUIREMENTS installed into DIR again only
-# when the file changed (its sha256 is kept in DIR).
-venv_step() {
-  local what="$1" dir="$2" requirements="$3" log="$4" want_sha
-  shift 4
-  want_sha="$(sha256sum "$requirements" | cut -d' ' -f1)"
-  if [ -x "$dir/bin/python3" ] && [ "$(cat "$dir/.requirements.sha256" 2>/dev/null)" = "$want_sha" ]; then
-    step_done "$what in ${dir#"$root"/}" "up to date"
-  else
-    step "$what into ${dir#"$root"/} with pip" "$log" "$TAIL_LINES" \
-      pip_install "$dir" "$requirements" "$dir/.requirements.sha256" "$want_sha" "$@"
-  fi
-}
 
 # The course's venv: Debian's ROS packages (rospy, PyQt5) stay visible.
 venv_step "the course's PyPI packages" "$root/.venv" "$root/requirements.txt" "$logs/pip-venv.log" \
@@ -169,18 +197,7 @@ if [ "${COURSE_HUB:-0}" = 1 ]; then
   for ids in /etc/subuid /etc/subgid; do
     grep -q '^containers:' "$ids" 2>/dev/null || echo "containers:1000000:1000000000" >> "$ids"
   done
-  venv_step "JupyterHub" "$root/.venv-hub" "$root/requirements-hub.txt" "$logs/pip-venv-hub.log"
-  # course_hub, the course's JupyterHub plug-ins and the hub's commands (course-hub, course-hub-passwords),
-  # a package of the hub's venv (src/course_hub/pyproject.toml; its dependencies are the pins above),
-  # installed again whenever its sources change
-  hub_sha="$(cd "$root/src/course_hub" && find pyproject.toml src -type f -name '*.py' -o -name pyproject.toml \
-    | LC_ALL=C sort | xargs sha256sum | sha256sum | cut -d' ' -f1)"
-  if [ "$(cat "$root/.venv-hub/.course_hub.sha256" 2>/dev/null)" = "$hub_sha" ]; then
-    step_done "course_hub in .venv-hub" "up to date"
-  else
-    step "course_hub into .venv-hub with pip" "$logs/pip-course-hub.log" "$TAIL_LINES" \
-      package_install "$root/.venv-hub" "$root/src/course_hub" "$root/.venv-hub/.course_hub.sha256" "$hub_sha"
-  fi
+  hub_venv
   node_dir="$root/.hub/node"
   if ! cmp -s "$root/deploy/jupyterhub/package.json" "$node_dir/package.json" \
      || [ ! -x "$node_dir/node_modules/.bin/configurable-http-proxy" ]; then

@@ -71,3 +71,29 @@ def test_a_failing_step_prints_its_logs_tail_and_exits_non_zero(tmp_path):
     tail = [line for line in done.stderr.splitlines() if line.startswith("apt line")]
     assert tail == ["apt line %d" % i for i in range(APT_LINES - 29, APT_LINES + 1)]  # the last 30 lines
     assert "logs/apt.log" in done.stderr
+
+
+def test_make_tests_hub_venv_step_installs_the_hubs_venv_alone_then_is_up_to_date(tmp_path):
+    """`install.sh --hub-venv` (make test): the hub's venv and course_hub in it, two steps, no apt, no
+    podman, no npm; a second run finds both up to date."""
+    root = checkout(tmp_path)
+    (root / "requirements-hub.txt").write_text("jupyterhub==6.1.1\n")
+    package = root / "src" / "course_hub"
+    (package / "src" / "course_hub").mkdir(parents=True)
+    (package / "pyproject.toml").write_text("[project]\nname = 'course_hub'\n")
+    (package / "src" / "course_hub" / "__init__.py").write_text("")
+    hub_python = root / ".venv-hub" / "bin" / "python3"  # the venv made already; pip a stand-in that succeeds
+    hub_python.parent.mkdir(parents=True)
+    hub_python.write_text("#!/bin/sh\nexit 0\n")
+    hub_python.chmod(0o755)
+    (tmp_path / "bin" / "apt-get").write_text("#!/bin/sh\necho apt-get ran >&2\nexit 1\n")
+    for run, result in (("first", r"\d+ s"), ("second", "up to date")):
+        done = subprocess.run(["bash", str(root / "setup" / "install.sh"), "--hub-venv"],
+                              env=dict(os.environ, PATH="%s:%s" % (tmp_path / "bin", os.environ["PATH"])),
+                              stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                              timeout=60, check=False)
+        assert done.returncode == 0 and done.stderr == "", (run, done.stdout, done.stderr)
+        lines = done.stdout.splitlines()
+        assert len(lines) == 2 and all(line.startswith("[%d/2] " % n) for n, line in enumerate(lines, 1)), lines
+        assert "JupyterHub" in lines[0] and "course_hub" in lines[1], lines
+        assert all(re.search(result + "$", line) for line in lines), (run, lines)

@@ -12,7 +12,7 @@ HAVE_SOLUTIONS := $(wildcard $(ROOT)/courses/robotics_labs/solution/*/package.xm
 ROSENV := source $(WS)/devel/setup.bash &&
 REFENV := source $(if $(HAVE_SOLUTIONS),$(SOLUTIONS_WS),$(WS))/devel/setup.bash &&
 
-.PHONY: help deps build demo lab jupyter hub hub-password hub-grade hub-check test flake-hunt grade course-lint autograder bench bench-grade docker-check autograder-check clean
+.PHONY: help deps build demo lab jupyter hub hub-password hub-grade hub-check lti-check test flake-hunt grade course-lint autograder bench bench-grade docker-check autograder-check clean
 
 # Every target has its line in `make help`: the text after `## ` on the target's own line
 # (tests/test_makefile.py checks that none is missing).
@@ -128,6 +128,14 @@ PLAIN_PYTHON := PYTHONPATH='$(subst $(EMPTY) $(EMPTY),:,$(PLAIN_PACKAGES:%=$(ROO
 hub-check: build ## the hub end to end with real parts: podman, students, a TA, attacks (root; not in test)
 	@COURSE_HUB=1 bash $(ROOT)/setup/install.sh
 	@$(REFENV) cd $(ROOT) && HUB_CHECK_ARGS='$(HUB_CHECK_ARGS)' $(E2E) tests/e2e/test_hub.py
+
+# The login from the LMS and the grades back to it, end to end (root, podman, headless Chromium; ~2 min, plus the
+# image's build): a real LTI 1.3 platform on loopback (PyPI's lti1p3platform), three students and a TA clicking its
+# course links in Chromium into the hub, a milestone's link, hub_grade --lti posting to its gradebook
+# (docs/hub.md): tests/e2e/test_lti.py. LTI_CHECK_ARGS as HUB_CHECK_ARGS ("--image ... --no-build").
+lti-check: build ## the hub's login from a real LTI 1.3 platform in Chromium, the grades into its gradebook (root; not in test)
+	@COURSE_HUB=1 bash $(ROOT)/setup/install.sh
+	@$(REFENV) cd $(ROOT) && LTI_CHECK_ARGS='$(LTI_CHECK_ARGS)' $(E2E) tests/e2e/test_lti.py
 
 # Gradescope autograder: setup.sh + run_autograder + this repository; MILESTONES="chatter ..." grades only those,
 # COURSE=courses/NAME grades that course (its solution/ and samples/ left out, as every course's).

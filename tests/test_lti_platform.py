@@ -3,12 +3,29 @@
 endpoint, which checks the client assertion's signature against the tool's JWKS it fetches over
 HTTP; every AGS request passes the library's bearer-token check (the platform's signature, issuer,
 expiry, scopes) and its line item and score handlers. What is asserted is what the platform
-stored: the line items, each student's score, maximum, comment and timestamp."""
+stored: the line items, each student's score, maximum, comment and timestamp.
+
+The launch side, as a tool sees it (the hub's end of it in a browser is `make lti-check`,
+tests/e2e/test_lti.py): a click on a course link starts the third-party login at the tool's URL
+with the library's parameters; the authentication request the tool sends back is answered with a
+form posting an id_token, signed with the key of the platform's JWKS, holding the user's roles,
+the link's custom parameters, the AGS endpoint and the tool's nonce; a request for another
+user, to a redirect_uri the tool did not register, or without the tool's client id, is refused."""
 from __future__ import annotations
 
 import argparse
 import csv
+import html
+import http.cookiejar
+import json
 import os
+import re
+import urllib.error
+import urllib.parse
+import urllib.request
+from typing import Dict, Tuple
+
+import jwt
 
 import pytest
 import yaml
@@ -19,7 +36,7 @@ from course_lti import config, record
 from course_lti.post import Poster
 from course_lti.scores import MilestoneInfo
 from course_lti.users import LmsUser
-from course_testkit.lti import LoopbackPlatform, rsa_key_pair, write_results
+from course_testkit.lti import INSTRUCTOR, LEARNER, LoopbackPlatform, rsa_key_pair, write_results
 
 COURSE = [MilestoneInfo("chatter", "Example publisher and subscriber", 10.0),
           MilestoneInfo("checkpoint1", "TimestampString publisher and subscriber", 10.0)]
@@ -135,3 +152,99 @@ def test_the_hub_posts_everyone_graded_and_nothing_for_who_was_not(tmp_path, pla
     assert summary.line() == "LMS: 1 scores posted, 0 unchanged, 1 not graded (no score sent), 0 pending"
     assert platform.scores_by_resource() == {"chatter": {"lms-user-1": platform.scores_by_resource()["chatter"]
                                                          ["lms-user-1"]}}  # bob: no score, not a 0
+
+
+TOOL = "http://hub.localhost:8000"
+
+
+class NoRedirects(urllib.request.HTTPRedirectHandler):
+    """A browser whose redirects the test follows itself (they go to the tool, which is not there)."""
+
+    def redirect_request(self, *args: object) -> None:
+        return None
+
+
+def browser() -> urllib.request.OpenerDirector:
+    return urllib.request.build_opener(urllib.request.HTTPCookieProcessor(http.cookiejar.CookieJar()), NoRedirects)
+
+
+def get(opener: urllib.request.OpenerDirector, url: str) -> Tuple[int, Dict[str, str], str]:
+    try:
+        with opener.open(url, timeout=10) as reply:
+            return reply.status, dict(reply.headers), reply.read().decode()
+    except urllib.error.HTTPError as err:
+        return err.code, dict(err.headers), err.read().decode()
+
+
+def click(opener: urllib.request.OpenerDirector, platform: LoopbackPlatform, sub: str, link: str) -> Dict[str, str]:
+    """`sub` opens the course page and clicks `link`: the parameters of the tool's login URL."""
+    status, _, page = get(opener, platform.course_url(sub))
+    assert status == 200 and 'id="link-%s"' % link in page, page
+    href = re.search(r'id="link-%s" href="([^"]+)"' % link, page).group(1)
+    status, headers, _ = get(opener, platform.base + href)
+    assert status == 302 and headers["Location"].startswith(TOOL + "/hub/lti13/oauth_login?"), headers
+    return dict(urllib.parse.parse_qsl(urllib.parse.urlsplit(headers["Location"]).query))
+
+
+def authentication_request(start: Dict[str, str], **changes: str) -> Dict[str, str]:
+    """What the tool sends the browser to the authorization endpoint with (ltiauthenticator's)."""
+    request = {"response_type": "id_token", "scope": "openid", "response_mode": "form_post", "prompt": "none",
+               "client_id": start["client_id"], "redirect_uri": TOOL + "/hub/lti13/oauth_callback",
+               "login_hint": start["login_hint"], "lti_message_hint": start["lti_message_hint"],
+               "nonce": "nonce-1", "state": "state-1"}
+    request.update(changes)
+    return request
+
+
+@pytest.fixture
+def course(platform):
+    platform.register_tool(TOOL + "/hub/lti13/oauth_login", TOOL + "/hub/", [TOOL + "/hub/lti13/oauth_callback"])
+    platform.enrol("lms-user-1", [LEARNER], "Alice")
+    platform.enrol("lms-user-9", [INSTRUCTOR], "Tom")
+    platform.add_link("workbench", "ROS workbench")
+    platform.add_link("chatter", "Milestone: chatter", {"milestone": "chatter"})
+    return platform
+
+
+def test_a_launch_is_the_librarys_login_initiation_then_a_signed_id_token_posted_to_the_tool(course):
+    alice = browser()
+    start = click(alice, course, "lms-user-1", "chatter")
+    assert start == {"iss": course.issuer, "login_hint": "lms-user-1", "target_link_uri": TOOL + "/hub/",
+                     "lti_message_hint": "chatter", "client_id": course.client_id,
+                     "lti_deployment_id": course.deployment_id}
+    query = urllib.parse.urlencode(authentication_request(start))
+    status, _, page = get(alice, course.authorize_url + "?" + query)
+    assert status == 200 and 'action="%s/hub/lti13/oauth_callback"' % TOOL in page and ".submit()" in page, page
+    fields = dict(re.findall(r'name="([^"]+)" value="([^"]*)"', page))
+    assert fields["state"] == "state-1"
+    keys = jwt.PyJWKClient(course.jwks_url)
+    token = html.unescape(fields["id_token"])
+    claims = jwt.decode(token, keys.get_signing_key_from_jwt(token).key, algorithms=["RS256"],
+                        audience=course.client_id, issuer=course.issuer)
+    assert claims["sub"] == "lms-user-1" and claims["nonce"] == "nonce-1"
+    assert claims["https://purl.imsglobal.org/spec/lti/claim/roles"] == [LEARNER]
+    assert claims["https://purl.imsglobal.org/spec/lti/claim/custom"] == {"milestone": "chatter"}
+    assert claims["https://purl.imsglobal.org/spec/lti/claim/deployment_id"] == course.deployment_id
+    assert claims["https://purl.imsglobal.org/spec/lti/claim/message_type"] == "LtiResourceLinkRequest"
+    assert claims["https://purl.imsglobal.org/spec/lti/claim/resource_link"]["id"] == "chatter"
+    assert claims["https://purl.imsglobal.org/spec/lti-ags/claim/endpoint"]["lineitems"] == course.lineitems_url
+    assert course.launches == [claims]
+
+
+def test_the_platform_refuses_an_authentication_request_that_is_not_its_users_or_the_tools(course):
+    tom = browser()
+    start = click(tom, course, "lms-user-9", "workbench")
+    assert json.loads(get(tom, course.jwks_url)[2])["keys"][0]["kid"]
+    refusals = {"login_hint": {"login_hint": "lms-user-1"},  # alice's launch from tom's browser
+                "redirect_uri": {"redirect_uri": "https://evil.example/steal"},
+                "client_id": {"client_id": "another-tool"},
+                "response_mode": {"response_mode": "query"},
+                "lti_message_hint": {"lti_message_hint": "no-such-link"}}
+    for what, changes in refusals.items():
+        query = urllib.parse.urlencode(authentication_request(start, **changes))
+        status, _, page = get(tom, course.authorize_url + "?" + query)
+        assert status == 400 and 'id=refused' in page and "id_token" not in page, (what, page)
+    assert course.launches == []
+    nobody = browser()  # no session with the platform: no launch either
+    status, _, page = get(nobody, course.base + "/lms/launch?link=workbench")
+    assert status == 400, page

@@ -45,7 +45,6 @@ import secrets
 import shutil
 import signal
 import subprocess
-import tempfile
 import time
 import urllib.parse
 import urllib.request
@@ -59,8 +58,8 @@ from course_hub.runner import PODMAN  # the hub's own podman: its networks
 from course_hub import passwords as hub_passwords
 from course_testkit.browser import chromium
 from course_testkit.hub import HubUser, LocalHub, SpawnFailed
-from course_testkit.hub_suite import (CONNECT, EVIL_PAGE, Report, build_image, cleanup, container_ip, finish,
-                                      host_connects, options, other_host, podman_out, upload)
+from course_testkit.hub_suite import (CONNECT, EVIL_PAGE, HUB_CHECK, Report, build_image, container_ip, host_connects,
+                                      other_host, podman_out, run_as_test, upload)
 from course_testkit.jupyter import Terminal
 from course_testkit.podman import CHECKOUT
 from course_checks.waiting import wait_for
@@ -570,18 +569,4 @@ def run(opts: argparse.Namespace, report: Report, work: Path) -> None:
 
 
 def test_the_hub_end_to_end():
-    opts = options(os.environ.get("HUB_CHECK_ARGS", ""))
-    if os.geteuid() != 0:
-        pytest.fail("run it as root (sudo make hub-check): podman runs the containers as root here", pytrace=False)
-    report = Report()
-    work = Path(tempfile.mkdtemp(prefix="hub-check-"))
-    os.chmod(work, 0o755)
-    started = time.monotonic()
-    try:
-        run(opts, report, work)
-    finally:
-        cleanup(PODMAN, work, opts.keep)
-        finish(report, started)
-    if report.failed or not report.total:
-        pytest.fail("%d of %d hub checks failed (their lines above say why): %s" % (
-            len(report.failed), report.total, "; ".join(report.failed)), pytrace=False)
+    run_as_test(HUB_CHECK, run, PODMAN)

@@ -18,7 +18,8 @@
 the hub's venv, deploy/jupyterhub's config) on a scratch data folder and class list, on free ports, its
 own podman socket, and no managed culler (the caller runs jupyterhub-idle-culler with
 `culler_token` when it wants servers culled); `extra_config` is config text run after the
-course's. Root only, as `make hub`.
+course's; `env`, more of make's variables (`HUB_AUTH=lti` and its `HUB_LTI_*`: the login from the
+LMS). Root only, as `make hub`.
 """
 from __future__ import annotations
 
@@ -246,7 +247,7 @@ class LocalHub:
     """`make hub` on scratch folders and free ports (see the module docstring)."""
 
     def __init__(self, image: str, work: Path, students: Sequence[str], tas: Sequence[str] = (),
-                 extra_config: str = "") -> None:
+                 extra_config: str = "", env: Optional[Dict[str, str]] = None) -> None:
         self.work = Path(work)
         self.data = self.work / "data"
         self.port = isolation.free_port()
@@ -270,6 +271,7 @@ class LocalHub:
                         HUB_URL=self.bind_url, PATH="%s:%s" % (CHECKOUT / ".hub" / "node" / "node_modules" / ".bin",
                                                                os.environ.get("PATH", os.defpath)))
         self.env.pop("DOCKER_HOST", None)
+        self.env.update(env or {})
         self.socket = "/run/ros-course-hub-local-%d/podman.sock" % os.getpid()
         self.api_port = isolation.free_port()
         self.log = self.work / "hub.log"

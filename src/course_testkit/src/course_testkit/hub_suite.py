@@ -1,4 +1,9 @@
-"""The class's hub end to end (tests/e2e/test_hub.py, `make hub-check`): what its checks share.
+"""The class's hub end to end (tests/e2e/test_hub.py, `make hub-check`; tests/e2e/test_lti.py,
+`make lti-check`): what their checks share.
+
+- `run_as_test`: a suite as one pytest test: root only, its options from its make variable, a
+  scratch folder, its checks' lines, everything it started removed, the test failed when a check
+  failed;
 
 - `Report`: one line per check (`ok  ...` or `FAIL ...: why`), and the count at the end
   (`finish`: `hub check K/N`);
@@ -9,7 +14,9 @@
 - `cleanup`: the suite's containers, networks, mounts and data removed;
 - `EVIL_PAGE`: a page a student serves from her own server, which tries to act on the hub with
   the cookies of whoever opens it;
-- `options`: HUB_CHECK_ARGS' words.
+- `options`: HUB_CHECK_ARGS' (LTI_CHECK_ARGS') words;
+- `browser_user`: a user logged in in a browser (an LTI launch) as a HubUser, to use their server
+  over HTTP (files, terminals) as test_hub's users do.
 
 Root only, as `make hub`. The hub's own podman command (course_hub.runner.PODMAN: its networks) is
 the caller's to give.
@@ -18,6 +25,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import http.cookiejar
 import os
 import shlex
 import shutil
@@ -25,17 +33,33 @@ import socket
 import subprocess
 import tempfile
 import time
+import urllib.parse
 from pathlib import Path
-from typing import Callable, Iterator, List, Sequence, Tuple
+from typing import Any, Callable, Iterator, List, NamedTuple, Sequence, Tuple
+
+import pytest
 
 from course_testkit.hub import HubUser
 from course_testkit.podman import PODMAN as BUILD_PODMAN, ensure_podman, import_base, network_mounts
 from course_testkit.podman import CHECKOUT, DOCKERFILE
 
 
-def options(words: str) -> argparse.Namespace:
-    """HUB_CHECK_ARGS (`make hub-check HUB_CHECK_ARGS="--image localhost/ros-course-hub --no-build"`)."""
-    parser = argparse.ArgumentParser(prog='make hub-check HUB_CHECK_ARGS=')
+class Suite(NamedTuple):
+    """An end-to-end hub suite: its name in its lines ("hub check"), its make target, the
+    environment variable holding its options."""
+
+    name: str
+    target: str
+    variable: str
+
+
+HUB_CHECK = Suite("hub check", "hub-check", "HUB_CHECK_ARGS")
+LTI_CHECK = Suite("lti check", "lti-check", "LTI_CHECK_ARGS")
+
+
+def options(words: str, suite: Suite = HUB_CHECK) -> argparse.Namespace:
+    """The suite's options (`make hub-check HUB_CHECK_ARGS="--image localhost/ros-course-hub --no-build"`)."""
+    parser = argparse.ArgumentParser(prog="make %s %s=" % (suite.target, suite.variable))
     parser.add_argument("--image", default="localhost/ros-course", help="the student image's tag")
     parser.add_argument("--no-build", action="store_true", help="use the image as it is")
     parser.add_argument("--keep", action="store_true", help="keep the scratch folder (data, logs)")
@@ -196,8 +220,49 @@ def cleanup(podman: Sequence[str], work: Path, keep: bool) -> None:
         print("hub check: kept %s" % work)
 
 
-def finish(report: Report, started: float) -> int:
-    print("hub check took %.0f s, load average %s" % (time.monotonic() - started, " ".join(
+def finish(report: Report, started: float, name: str = HUB_CHECK.name) -> int:
+    """The suite's last lines: its time and the machine's load, then `<name> K/N`; 0 when all passed."""
+    print("%s took %.0f s, load average %s" % (name, time.monotonic() - started, " ".join(
         open("/proc/loadavg").read().split()[:3])))
-    print("hub check %d/%d" % (report.passed, report.total), flush=True)
+    print("%s %d/%d" % (name, report.passed, report.total), flush=True)
     return 0 if report.passed == report.total and report.total else 1
+
+
+def run_as_test(suite: Suite, run: Callable[[argparse.Namespace, Report, Path], None], podman: Sequence[str]) -> None:
+    """`run(options, report, scratch folder)` as a pytest test: as root only (podman runs the
+    containers as root here), a scratch folder of its own (the hub's data, logs), then the
+    containers, networks, mounts and folder removed however it ended (`cleanup`, with the hub's
+    `podman`); the test fails naming the checks that failed, or when none ran."""
+    opts = options(os.environ.get(suite.variable, ""), suite)
+    if os.geteuid() != 0:
+        pytest.fail("run it as root (sudo make %s): podman runs the containers as root here" % suite.target,
+                    pytrace=False)
+    report = Report()
+    work = Path(tempfile.mkdtemp(prefix="%s-" % suite.target))
+    os.chmod(work, 0o755)
+    started = time.monotonic()
+    try:
+        run(opts, report, work)
+    finally:
+        cleanup(podman, work, opts.keep)
+        finish(report, started, suite.name)
+    if report.failed or not report.total:
+        pytest.fail("%s: %d of %d checks failed (their lines above say why): %s" % (
+            suite.name, len(report.failed), report.total, "; ".join(report.failed)), pytrace=False)
+
+
+def browser_user(driver: Any, hub_url: str, name: str) -> HubUser:
+    """User `name`, logged in to the hub in the browser `driver` (a selenium driver) and now on a
+    page of their own server: a HubUser holding that server's cookies (its OAuth login, _xsrf),
+    which speaks to the server over HTTP (REST, terminals) as the browser would. Only what the
+    server's origin holds: the hub's own API needs the hub's cookies."""
+    user = HubUser(hub_url, name, "")
+    where = urllib.parse.urlsplit(driver.current_url)
+    assert where.path.startswith("/user/%s/" % name), driver.current_url
+    user.origins[name] = "%s://%s" % (where.scheme, where.netloc)
+    for cookie in driver.get_cookies():
+        domain = cookie.get("domain") or where.hostname or ""
+        user.jar.set_cookie(http.cookiejar.Cookie(
+            0, cookie["name"], cookie["value"], None, False, domain, domain.startswith("."), domain.startswith("."),
+            cookie.get("path") or "/", True, bool(cookie.get("secure")), cookie.get("expiry"), False, None, None, {}))
+    return user

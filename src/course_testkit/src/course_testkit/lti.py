@@ -1,4 +1,5 @@
-"""A real LTI 1.3 platform on loopback, for the tests of the grades sent back to the LMS.
+"""A real LTI 1.3 platform on loopback, the test LMS: the grades sent back to it, and the launches
+from it that log students into the hub.
 
 PyPI's lti1p3platform is the platform's side of LTI 1.3 as a library: the registration (issuer,
 client id, the platform's key pair, the tool's JWKS URL), the token endpoint's checks
@@ -12,25 +13,41 @@ has (AGS 2.0: a platform must not replace a score with an older one). Every chec
 the library's; what this module adds is the HTTP around it, the storage, and the tool's JWKS URL
 (the tool's own endpoint, served here too).
 
+The launch side (`make lti-check`, tests/e2e/test_lti.py) is the library's too: its OIDC login
+initiation (`OIDCLoginAbstract`: the preflight URL with iss, login_hint, target_link_uri,
+lti_message_hint, client_id and lti_deployment_id) and its message launch
+(`LTIAdvantageMessageLaunchAbstract`: the authentication request checked for its nonce, state,
+redirect_uri and client_id, the id_token's claims built and signed with the platform's key, the
+AGS endpoint claim). This module adds what a platform's own pages are: a roster (`enrol`: each
+user's LMS id and roles), course links (`add_link`, with custom parameters), a course page per
+user with those links (`course_url`: it also opens the user's session with the platform, a
+cookie), the authorization endpoint's further checks (the user's session is the login_hint's, the
+redirect_uri is one the tool registered, the request is an OIDC implicit form_post one), the
+auto-submitting form that posts the id_token and state to the tool, and the platform's JWKS.
+
 `write_results` writes a grading folder as course_grader does (`<out>/<student>/results.json`),
 for the tests of what is posted from one.
 """
 from __future__ import annotations
 
+import html
 import json
 import os
 import threading
 import urllib.parse
+from http.cookies import SimpleCookie
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
-from typing import Any, Dict, List, Optional, Sequence, Tuple
+from typing import Any, Dict, List, NamedTuple, Optional, Sequence, Tuple
 
 import jwt
 from cryptography.hazmat.primitives import serialization
 from cryptography.hazmat.primitives.asymmetric import rsa
 from lti1p3platform.exceptions import LineItemNotFoundException, LtiException, MissingRequiredClaim, \
-    UnsupportedGrantType
+    PreflightRequestValidationException, UnsupportedGrantType
 from lti1p3platform.lineitem import TLineItem
 from lti1p3platform.ltiplatform import LTI1P3PlatformConfAbstract
+from lti1p3platform.message_launch import LTIAdvantageMessageLaunchAbstract
+from lti1p3platform.oidc_login import OIDCLoginAbstract
 from lti1p3platform.registration import Registration
 from lti1p3platform.request import Request, TRequest
 from lti1p3platform.response import Response
@@ -145,12 +162,110 @@ class _Ags(AssignmentsGradesService):
         return line_item_id if "://" in line_item_id else "%s/%s" % (self.ags.lineitems_url, line_item_id)
 
 
+LIS = "http://purl.imsglobal.org/vocab/lis/v2/"
+LEARNER = LIS + "membership#Learner"
+INSTRUCTOR = LIS + "membership#Instructor"
+SESSION_COOKIE = "lms_session"  # the platform's own login: which of its users is at this browser
+
+
+class Member(NamedTuple):
+    """A user of the platform's course: LMS user id (the launches' sub), roles, display name."""
+
+    sub: str
+    roles: Tuple[str, ...]
+    name: str
+
+
+class Link(NamedTuple):
+    """A course link to the tool (a resource link), with its custom parameters."""
+
+    link_id: str
+    title: str
+    custom: Tuple[Tuple[str, str], ...] = ()
+
+
+class LaunchRefused(Exception):
+    """The platform will not launch: the message is its page's."""
+
+
+class _Reply(NamedTuple):
+    """One HTTP answer: status, content type, body, further headers (Location, Set-Cookie)."""
+
+    status: int
+    kind: str
+    body: bytes
+    headers: Tuple[Tuple[str, str], ...] = ()
+
+
+class _LoginInitiation(OIDCLoginAbstract):
+    """The library's third-party login initiation; the message hint is the course link's id."""
+
+    def set_lti_message_hint(self, **kwargs: Any) -> None:
+        self._lti_message_hint = kwargs["link_id"]
+
+    def get_redirect(self, url: str) -> str:
+        return url
+
+
+class _Launch(LTIAdvantageMessageLaunchAbstract):
+    """The library's message launch, answering the tool's authentication request for one of the
+    platform's users on one of its links (see LoopbackPlatform.authorize)."""
+
+    def __init__(self, request: Request, platform: "LoopbackPlatform", session: str) -> None:
+        super().__init__(request, platform._platform)
+        self.owner, self.session = platform, session
+        self.claims: Dict[str, Any] = {}
+
+    def prepare_launch(self, preflight_response: Dict[str, Any]) -> None:
+        """The checks the library leaves to the platform, then the claims of this user and link."""
+        owner = self.owner
+        if preflight_response.get("response_type") != "id_token" or \
+                "openid" not in str(preflight_response.get("scope", "")).split() or \
+                preflight_response.get("response_mode") != "form_post":
+            raise LaunchRefused("not an OIDC implicit-flow form_post authentication request")
+        if preflight_response.get("redirect_uri") not in owner.redirect_uris:
+            raise LaunchRefused("redirect_uri %r is not one the tool registered" % preflight_response.get("redirect_uri"))
+        member = owner.roster.get(str(preflight_response.get("login_hint")))
+        if member is None or member.sub != self.session:
+            raise LaunchRefused("the login_hint is not the user logged in to the platform at this browser")
+        link = owner.links.get(str(preflight_response.get("lti_message_hint")))
+        if link is None:
+            raise LaunchRefused("lti_message_hint names no course link")
+        self.set_user_data(member.sub, list(member.roles), full_name=member.name)
+        self.set_resource_link_claim(link.link_id, title=link.title)
+        self.set_launch_context_claim(owner.context_id, context_title=owner.context_title)
+        if link.custom:
+            self.set_custom_parameters_claim(dict(link.custom))
+        self.set_ags(owner.lineitems_url, allow_creating_lineitems=True)
+
+    def get_launch_data(self) -> Tuple[Dict[str, Any], str]:
+        message, state = super().get_launch_data()
+        self.claims = message  # the library signs this very dict, adding iat and exp
+        return message, state
+
+    def render_launch_form(self, launch_data: Dict[str, Any], **kwargs: Any) -> bytes:
+        """The page that posts the id_token and state to the tool's redirect_uri at once (the OIDC
+        form_post response mode)."""
+        fields = "".join('<input type="hidden" name="%s" value="%s">' % (name, html.escape(str(launch_data[name])))
+                         for name in ("id_token", "state"))
+        return ('<!doctype html><title>Opening the tool</title><form id="lti-launch" method="post" action="%s">%s'
+                '<noscript><button>Continue</button></noscript></form>'
+                '<script>document.getElementById("lti-launch").submit();</script>'
+                % (html.escape(launch_data["launch_url"]), fields)).encode()
+
+
 class LoopbackPlatform:
     """The platform on 127.0.0.1, a free port, in a thread; a context manager.
 
     Its URLs: `token_url`, `lineitems_url` (one course context), `tool_jwks_url` (the tool's JWKS,
     the public half of `tool_private_key` under `kid`). `outage(n)` answers the next n requests
-    503, as a platform that is down; `requests` lists (method, path) of every request."""
+    503, as a platform that is down; `requests` lists (method, path) of every request.
+
+    The launches: `register_tool` (the tool's login initiation URL, target link URI and redirect
+    URIs), `enrol` (a user and their roles), `add_link` (a course link, its custom parameters);
+    `course_url(sub)` is the course page as that user sees it, `authorize_url` the platform's
+    OIDC authorization endpoint, `jwks_url` its keys. `launches` lists the claims of every
+    id_token it signed."""
 
     def __init__(self, issuer: str = "https://lms.test", client_id: str = "course-tool",
                  deployment_id: str = "1", kid: str = "tool-key-1") -> None:
@@ -168,9 +283,16 @@ class LoopbackPlatform:
         self.token_url = self.base + "/token"
         self.lineitems_url = self.base + "/ags/lineitems"
         self.tool_jwks_url = self.base + "/tool/jwks"
+        self.authorize_url = self.base + "/lms/authorize"
+        self.jwks_url = self.base + "/lms/jwks"
         self._platform = _Platform(issuer=issuer, client_id=client_id, deployment_id=deployment_id,
                                    private_key=self._platform_keys[0], public_key=self._platform_keys[1],
                                    tool_jwks_url=self.tool_jwks_url)
+        self.context_id, self.context_title = "ros-course", "ROS course"
+        self.roster: Dict[str, Member] = {}
+        self.links: Dict[str, Link] = {}
+        self.redirect_uris: Tuple[str, ...] = ()
+        self.launches: List[Dict[str, Any]] = []
         self._thread = threading.Thread(target=self._server.serve_forever, daemon=True)
 
     def __enter__(self) -> "LoopbackPlatform":
@@ -182,6 +304,25 @@ class LoopbackPlatform:
         self._server.server_close()
         self._thread.join()
 
+    def register_tool(self, login_url: str, target_link_uri: str, redirect_uris: Sequence[str]) -> None:
+        """The tool as registered with the platform: where a launch starts (its OIDC login
+        initiation URL), the link's target, and where id_tokens may be posted."""
+        registration = self._platform.get_registration()
+        registration.set_oidc_login_url(login_url).set_launch_url(target_link_uri)
+        self.redirect_uris = tuple(redirect_uris)
+
+    def enrol(self, sub: str, roles: Sequence[str], name: str = "") -> None:
+        """A user of the course: LMS user id `sub`, LTI roles (LEARNER, INSTRUCTOR, ...)."""
+        self.roster[sub] = Member(sub, tuple(roles), name or sub)
+
+    def add_link(self, link_id: str, title: str, custom: Optional[Dict[str, str]] = None) -> None:
+        """A course link to the tool; `custom`: its custom parameters (the launch's custom claim)."""
+        self.links[link_id] = Link(link_id, title, tuple(sorted((custom or {}).items())))
+
+    def course_url(self, sub: str) -> str:
+        """The course page as user `sub` opens it (it logs that user in to the platform)."""
+        return "%s/lms/course?user=%s" % (self.base, urllib.parse.quote(sub))
+
     def outage(self, requests: int) -> None:
         """The next `requests` requests are answered 503 Service Unavailable."""
         self._outages = requests
@@ -190,20 +331,72 @@ class LoopbackPlatform:
         """resourceId -> userId -> the score stored."""
         return {item["resourceId"]: self.book.scores.get(url, {}) for url, item in self.book.lineitems.items()}
 
-    def _answer(self, method: str, path: str, query: Dict[str, str], headers: Any, body: bytes
-                ) -> Tuple[int, str, bytes]:
-        """(status, content type, body) for one request."""
+    def _answer(self, method: str, path: str, query: Dict[str, str], headers: Any, body: bytes) -> _Reply:
+        """The answer to one request."""
         if self._outages > 0:
             self._outages -= 1
-            return 503, "application/json", b'{"error": "down for maintenance"}'
+            return _Reply(503, "application/json", b'{"error": "down for maintenance"}')
         if method == "GET" and path == "/tool/jwks":
-            return 200, "application/json", json.dumps(jwks_of(self._tool_public_key, self.kid)).encode()
+            return _Reply(200, "application/json", json.dumps(jwks_of(self._tool_public_key, self.kid)).encode())
         with self._lock:
             if method == "POST" and path == "/token":
-                return self._token(body)
+                return _Reply(*self._token(body))
             if path.startswith("/ags/lineitems"):
-                return self._ags(method, path, query, headers, body)
-        return 404, "application/json", b'{"error": "no such endpoint"}'
+                return _Reply(*self._ags(method, path, query, headers, body))
+            if path.startswith("/lms/"):
+                return self._lms(method, path, query, headers, body)
+        return _Reply(404, "application/json", b'{"error": "no such endpoint"}')
+
+    def _lms(self, method: str, path: str, query: Dict[str, str], headers: Any, body: bytes) -> _Reply:
+        """The platform's own pages: the course page, a link's launch, the OIDC authorization
+        endpoint, the JWKS."""
+        session = SimpleCookie(headers.get("Cookie") or "")
+        user = session[SESSION_COOKIE].value if SESSION_COOKIE in session else ""
+        try:
+            if path == "/lms/jwks":
+                return _Reply(200, "application/json", json.dumps(self._platform.get_jwks()).encode())
+            if path == "/lms/course":
+                return self._course_page(query.get("user", ""))
+            if path == "/lms/launch":
+                return self._login_initiation(user, query.get("link", ""))
+            if path == "/lms/authorize":
+                form = dict(urllib.parse.parse_qsl(body.decode())) if method == "POST" else {}
+                return self._authorize(user, dict(query), form)
+        except (LaunchRefused, PreflightRequestValidationException, AssertionError) as err:
+            why = str(err) or "the authentication request lacks nonce, state, redirect_uri or this client_id"
+            page = "<!doctype html><title>Launch refused</title><p id=refused>Launch refused: %s</p>" % html.escape(why)
+            return _Reply(400, "text/html", page.encode())
+        return _Reply(404, "application/json", b'{"error": "no such page"}')
+
+    def _course_page(self, sub: str) -> _Reply:
+        """The course as `sub` sees it: its links to the tool; the user's platform session begins."""
+        if sub not in self.roster:
+            raise LaunchRefused("no such user in the course")
+        items = "".join('<li><a id="link-%s" href="/lms/launch?link=%s">%s</a></li>' % (
+            html.escape(link.link_id), urllib.parse.quote(link.link_id), html.escape(link.title))
+            for link in self.links.values())
+        page = "<!doctype html><title>%s</title><h1>%s</h1><p>%s</p><ul>%s</ul>" % (
+            html.escape(self.context_title), html.escape(self.context_title), html.escape(self.roster[sub].name), items)
+        return _Reply(200, "text/html", page.encode(),
+                      (("Set-Cookie", "%s=%s; Path=/; HttpOnly; SameSite=Lax" % (SESSION_COOKIE, sub)),))
+
+    def _login_initiation(self, user: str, link_id: str) -> _Reply:
+        """A click on a course link: the library's third-party login initiation, a redirect to the
+        tool's login URL."""
+        if user not in self.roster or link_id not in self.links:
+            raise LaunchRefused("log in to the platform and open a course link")
+        login = _LoginInitiation(None, self._platform)
+        login.set_lti_message_hint(link_id=link_id)
+        return _Reply(302, "text/plain", b"", (("Location", login.initiate_login(user)),))
+
+    def _authorize(self, user: str, query: Dict[str, str], form: Dict[str, str]) -> _Reply:
+        """The tool's authentication request: the library's launch, its id_token posted to the tool
+        by an auto-submitting form."""
+        launch = _Launch(_Request({"method": "GET", "get_data": query, "form_data": form, "headers": {},
+                                   "content_type": None, "path": "/lms/authorize", "json": None}), self, user)
+        page = launch.lti_launch()
+        self.launches.append(launch.claims)
+        return _Reply(200, "text/html", page)
 
     def _token(self, body: bytes) -> Tuple[int, str, bytes]:
         form = dict(urllib.parse.parse_qsl(body.decode()))
@@ -246,13 +439,15 @@ class LoopbackPlatform:
                 length = int(self.headers.get("Content-Length") or 0)
                 body = self.rfile.read(length) if length else b""
                 platform.requests.append((self.command, self.path))
-                status, kind, out = platform._answer(self.command, parts.path, dict(urllib.parse.parse_qsl(parts.query)),
-                                                     self.headers, body)
-                self.send_response(status)
-                self.send_header("Content-Type", kind)
-                self.send_header("Content-Length", str(len(out)))
+                reply = platform._answer(self.command, parts.path, dict(urllib.parse.parse_qsl(parts.query)),
+                                         self.headers, body)
+                self.send_response(reply.status)
+                self.send_header("Content-Type", reply.kind)
+                self.send_header("Content-Length", str(len(reply.body)))
+                for name, value in reply.headers:
+                    self.send_header(name, value)
                 self.end_headers()
-                self.wfile.write(out)
+                self.wfile.write(reply.body)
 
             do_GET = do_POST = do_PUT = do_DELETE = _serve
 

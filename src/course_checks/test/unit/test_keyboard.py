@@ -53,6 +53,9 @@ def test_raw_wait_lands_every_key_on_a_toggling_reader(tmp_path):
     out.write_text("")
     keyboard = PtyKeyboard([sys.executable, "-c", TOGGLING_READER, str(out)], raw_wait=1.0)
     try:
+        # The reader first has to start (seconds on a loaded machine): raw_wait covers its toggling,
+        # not its start-up, as a check presses keys only once the node has registered.
+        assert keyboard.wait_for_raw_mode(60.0)
         for key in "wasd" * 3:
             keyboard.press(key)
             time.sleep(0.05)

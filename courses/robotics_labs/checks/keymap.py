@@ -199,7 +199,8 @@ class KeyMapSearch:
     previous key must not pass for this one's; the very first press needs no second), fixes
     whether Enter is needed and the layout tried first. Then the keys of that layout for the
     motions still missing (each up to `tries` times while it gives no command at all: a press
-    can be lost), then every other key once. Any press counts for whichever motion it makes.
+    can be lost), then every other key once, except those the first search already pressed the
+    same way and saw make none of the four motions. Any press counts for whichever motion it makes.
     `first`, a key map found before (e.g. on the same node under another launch file), is tried
     first. A node that exits after a key is started again (`restart_due`, then restarted()) up to
     `max_restarts` times, and that key is not pressed again.
@@ -330,15 +331,20 @@ class KeyMapSearch:
         self._patient -= {p.key for p in later}
 
     def _found(self, probe: Probe, outcome: Outcome, gave: Tuple[str, ...]) -> None:
-        """The first key found: it fixes Enter, and the layout whose keys come next."""
+        """The first key found: it fixes Enter, and the layout whose keys come next. Every press
+        before it was judged for all four motions: each counts for the motions still missing, and
+        a key it showed to make none of them (pressed as the key map presses, answered by no
+        motion, the node still running) is not pressed again among every other key."""
+        earlier = self.missing.get(FORWARD, [])
         self.keymap = KeyMap("custom", {}, probe.enter)
-        self.missing = {d: [] for d in DIRECTIONS if d not in gave}
+        self.missing = {d: list(earlier) for d in DIRECTIONS if d not in gave}
         for direction in gave:
             self._assign(direction, probe, outcome)
+        settled = {p.key for p, o in earlier if p.enter == probe.enter and not o.directions() and not o.exited}
         preferred = self._preferred(probe.key, probe.enter, gave)
         self._patient = {k for keys in preferred.values() for k in keys}
         order = [(d, k) for d in DIRECTIONS if d not in gave for k in preferred.get(d, ())]
-        order += [(_usual_direction(k, self.layouts), k) for k in ALL_KEYS]
+        order += [(_usual_direction(k, self.layouts), k) for k in ALL_KEYS if k not in settled]
         seen: Set[str] = set()
         self._queue = []
         for direction, key in order:

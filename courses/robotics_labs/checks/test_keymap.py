@@ -212,6 +212,38 @@ def test_strafing_shows_linear_y():
     assert "linear.x=0 linear.y=1 angular.z=0" in message and "linear.x=0 linear.y=-1 angular.z=0" in message
 
 
+def test_keys_shown_to_make_no_motion_before_the_first_find_are_not_pressed_again():
+    # up and down strafe, left and right turn: found last among every key (the arrows), so every
+    # letter and digit was already pressed once and made nothing
+    keys = {"up": (0.0, 0.0, 2.0), "down": (0.0, 0.0, -2.0), "left": (0.0, 2.0), "right": (0.0, -2.0)}
+    ctrl = FakeController(keys)
+    result = search(ctrl)
+    assert set(result.missing) == {km.FORWARD, km.BACKWARD}
+    letters = [p.key for p in ctrl.presses if len(p.key) == 1]
+    forward_keys = {k for layout in km.LAYOUTS for k in layout.keys[km.FORWARD]}  # pressed `rounds` times
+    assert all(letters.count(k) == 1 for k in letters if k not in forward_keys)  # not once per search
+    message = km.failure_message(result, "/turtle1/cmd_vel", "turtle1")
+    # the reason still names what was pressed before the turns were found
+    assert "no key made turtle1 go forward: after pressing up, 'w', 'z', 'i' and 37 more keys" in message
+    assert "no key made turtle1 go backward: after pressing 's', 'x', 'k', ',' and 37 more keys" in message
+    assert "linear.x=0 linear.y=2 angular.z=0" in message
+
+
+def test_a_key_silent_before_the_first_find_is_still_tried_when_it_is_the_layouts():
+    # 's' goes backward only once 'w' has been pressed (a node that arms on its first key): the
+    # preferred layout's keys are pressed again after the first find, every other key is not
+    class Arming(FakeController):
+        def press(self, probe):
+            if probe.key == "s" and not any(p.key == "w" for p in self.presses):
+                self.presses.append(probe)
+                return km.Outcome(())
+            return super().press(probe)
+    keys = {"w": (1.0, 0.0), "s": (-1.0, 0.0), "a": (0.0, 1.0), "d": (0.0, -1.0)}
+    result = search(Arming(keys))
+    assert result.complete and result.keymap.keys == {km.FORWARD: "w", km.BACKWARD: "s", km.LEFT: "a",
+                                                      km.RIGHT: "d"}
+
+
 def test_command_describes_every_field_that_is_not_zero():
     assert km.Command(0.0, 0.0).describe() == "linear.x=0 angular.z=0"
     assert km.Command(1.0, -0.5, 0.0, 2.0, 0.0, 3.0).describe() == "linear.x=1 linear.z=2 angular.y=3 angular.z=-0.5"

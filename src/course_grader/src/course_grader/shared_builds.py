@@ -26,7 +26,7 @@ from typing import Dict, List, Optional, Tuple
 # Folders of a package whose files run at build time, whatever they are (dynamic_reconfigure's cfg/).
 BUILD_TIME_FOLDERS = ("cfg",)
 BUILD_TIME_NAMES = ("setup.py", "CMakeLists.txt", "package.xml")
-COPIED = ("devel", "build")
+COPIED = ("devel",)  # what runs need; build/ is CMake's, read only by a build
 TOPLEVEL = "CMakeLists.txt"
 _CHUNK = 1 << 20
 
@@ -69,7 +69,7 @@ def inputs_key(src: str) -> str:
 
 
 def relocate(donor: str, ws: str) -> Optional[str]:
-    """Copy `donor`'s devel and build folders into the workspace `ws` with every mention of
+    """Copy `donor`'s devel folder into the workspace `ws` with every mention of
     `donor`'s path in their text files made `ws`'s. Returns None when done, else why it could not
     be (a binary file holding the path: the caller builds `ws` itself); the partial copy is removed."""
     old, new = os.path.abspath(donor).encode(), os.path.abspath(ws).encode()

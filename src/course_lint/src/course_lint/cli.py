@@ -35,8 +35,8 @@ def parse(argv: Optional[List[str]]) -> argparse.Namespace:
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("course", metavar="DIR", help="the course folder (holding course.yaml)")
     parser.add_argument("--only", action="append", metavar="M", help="lint only milestone M (repeatable)")
-    parser.add_argument("--jobs", "-j", type=int, help="the grader's runs at once (default: the grader's own, "
-                                                       "3 per core as the memory allows)")
+    parser.add_argument("--jobs", "-j", type=int, help="the grader's runs at once (default: 5 per core, as the "
+                                                       "memory allows)")
     parser.add_argument("--operators", metavar="A,B", help="only these mutant operators (default: all, see --list)")
     parser.add_argument("--keep", metavar="DIR", help="keep the mutants' folders and the grader's output in DIR")
     parser.add_argument("--mutmut", action="store_true",

@@ -27,6 +27,7 @@ from typing import Dict, List, NamedTuple, Optional, Sequence, Set, Tuple
 
 from catkin_pkg.packages import find_packages
 from course_format.course_file import Course
+from course_grader import cli as grader_cli
 from course_format.milestone import Equivalent, Milestone
 
 from course_lint import ran as measure
@@ -36,6 +37,8 @@ from course_lint.mutants import Mutant, Operator, package_mutants
 REFERENCE = "reference"
 # In each submission handed to the grader: the milestones it is graded on (the grader's --only-from).
 ONLY_FILE = "course_lint_only.json"
+RUNS_PER_CORE = 5  # the grader's runs at once, a core (default_jobs)
+SHARED_BUILDS = 2  # submissions made ready at once (the grader's --builds)
 GRADE = ["rosrun", "course_grader", "grade"]
 LOG_TAIL_LINES = 20
 STARTS = ("rosrun", "roslaunch")  # a start step's parameters naming what it starts
@@ -160,14 +163,24 @@ def lay_out(sub: str, milestone: Milestone, folders: Dict[str, str], mutant: Opt
     return sub
 
 
+def default_jobs(cores: int = len(os.sched_getaffinity(0)), memory_mib: Optional[float] = None) -> int:
+    """The grader's runs at once for a lint: RUNS_PER_CORE a core, as many as the memory holds.
+    More than a class's grading (course_grader.cli.RUNS_PER_CORE): most runs of a lint are a
+    mutant's that its check fails by waiting out a time-out or a key's answer, with the CPU idle
+    (the built-in course at 10 runs on 2 cores kept 60% of them busy)."""
+    memory = grader_cli.available_mib() if memory_mib is None else memory_mib
+    return max(1, min(RUNS_PER_CORE * cores, int(memory // grader_cli.MIB_PER_RUN)))
+
+
 def grade(course: Course, subs: Sequence[str], out: str, jobs: Optional[int]) -> Tuple[int, str]:
     """Run the grader on the submissions, each graded on the milestones its ONLY_FILE names; its
-    exit code and its log's path."""
+    exit code and its log's path. Most submissions are copies of a build (--share-builds), which
+    take a second each, not a catkin_make: SHARED_BUILDS of them are made ready at once."""
     shutil.rmtree(out, ignore_errors=True)
     os.makedirs(out)
     log = os.path.join(out, "grade.log")
-    command = GRADE + ["--course", course.root, "--only-from", ONLY_FILE, "--share-builds", "--out", out]
-    command += ["--jobs", str(jobs)] if jobs else []
+    command = GRADE + ["--course", course.root, "--only-from", ONLY_FILE, "--share-builds", "--out", out,
+                       "--jobs", str(jobs or default_jobs()), "--builds", str(SHARED_BUILDS)]
     command += list(subs)
     with open(log, "w") as f:
         code = subprocess.call(command, stdout=f, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL)

@@ -80,8 +80,10 @@ def test_student_code_sees_only_its_own_processes_and_files(sandbox, place):
 def test_ctrl_c_reaches_the_node_and_its_exit_code_comes_back(sandbox, place):
     _, home, _ = place
     script = home / "node.py"
-    script.write_text("import signal, sys, time\n"
-                      "def bye(*_):\n    print('bye', flush=True)\n    sys.exit(3)\n"
+    # the handler writes with os.write: SIGINT may land while print('ready') is still inside
+    # stdout's buffered writer (the line already read here), and a print there raises "reentrant call"
+    script.write_text("import os, signal, sys, time\n"
+                      "def bye(*_):\n    os.write(1, b'bye\\n')\n    sys.exit(3)\n"
                       "signal.signal(signal.SIGINT, bye)\nprint('ready', flush=True)\n"
                       "while True:\n    time.sleep(0.05)\n")
     argv, env, cwd = sandbox.prepare(["/usr/bin/python3", str(script)])

@@ -197,11 +197,12 @@ class RunSandbox:
             if self._keeper.poll() is not None:
                 break
             time.sleep(0.005)
-        error = b""
-        if self._keeper.poll() is not None:
-            error = self._keeper.stderr.read() or b""
+        code = self._keeper.poll()
+        error = (self._keeper.stderr.read() or b"") if code is not None else b""
         self._kill_keeper()
-        raise RuntimeError("the sandbox did not start: %s" % error.decode(errors="replace").strip())
+        why = ("its keeper exited with code %s: %s" % (code, error.decode(errors="replace").strip() or "no message")
+               if code is not None else "its keeper's init was not up within %g s" % START_TIMEOUT_S)
+        raise RuntimeError("the sandbox did not start: %s" % why)
 
     def _ensure_started(self) -> None:
         with self._lock:

@@ -18,7 +18,7 @@ import rospy
 
 from course_format import causes
 from course_milestones.discovery import CALLER, node_uris, published_type, sends_to
-from course_milestones.students import RAW_WAIT, REGISTER_TIMEOUT, wait_for_publisher
+from course_milestones.students import RAW_WAIT, wait_for_publisher
 from course_checks.artifacts import artifact_path
 from course_checks.keyboard import PtyKeyboard
 from course_checks.recorders import TopicRecorder
@@ -28,6 +28,9 @@ import keymap as km  # beside it in the course's checks/
 
 PROBE_WINDOW = 1.5        # s: how long a key press has to produce its command
 PUBLISHER_SIDE_WAIT = 3.0  # s: how long wait_connected waits for the node to list our connection
+# s: how long a node started again has to publish again: as long as its first start had (a launch
+# file's restart starts its simulator too; under a class's grading load it took over 15 s once)
+RESTART_TIMEOUT = 30.0
 Pose = Tuple[float, float, float]
 
 
@@ -169,7 +172,7 @@ def _restart(keyboard: PtyKeyboard, commands: TopicRecorder, why: str) -> Option
     topic = commands.sub.resolved_name
     before = node_uris()
     keyboard.restart()
-    fresh = wait_for_publisher(topic, keyboard, REGISTER_TIMEOUT, before)
+    fresh = wait_for_publisher(topic, keyboard, RESTART_TIMEOUT, before)
     if fresh is None or not wait_connected(commands, fresh.node):
         return causes.finding("not_published", "started again %s, it did not publish %s again" % (why, topic))
     return None

@@ -83,9 +83,9 @@ def available_mib(meminfo: str = "/proc/meminfo", cgroup: str = "/sys/fs/cgroup"
     return available
 
 
-def default_jobs(cores: int, memory_mib: float) -> int:
-    """RUNS_PER_CORE runs per core, as many as the memory holds, at least one."""
-    return max(1, min(RUNS_PER_CORE * cores, int(memory_mib // MIB_PER_RUN)))
+def default_jobs(cores: int, memory_mib: float, per_core: int = RUNS_PER_CORE) -> int:
+    """`per_core` runs per core (RUNS_PER_CORE), as many as the memory holds, at least one."""
+    return max(1, min(per_core * cores, int(memory_mib // MIB_PER_RUN)))
 
 
 CORES = len(os.sched_getaffinity(0))

@@ -163,13 +163,12 @@ def lay_out(sub: str, milestone: Milestone, folders: Dict[str, str], mutant: Opt
     return sub
 
 
-def default_jobs(cores: int = len(os.sched_getaffinity(0)), memory_mib: Optional[float] = None) -> int:
+def default_jobs() -> int:
     """The grader's runs at once for a lint: RUNS_PER_CORE a core, as many as the memory holds.
     More than a class's grading (course_grader.cli.RUNS_PER_CORE): most runs of a lint are a
     mutant's that its check fails by waiting out a time-out or a key's answer, with the CPU idle
     (the built-in course at 10 runs on 2 cores kept 60% of them busy)."""
-    memory = grader_cli.available_mib() if memory_mib is None else memory_mib
-    return max(1, min(RUNS_PER_CORE * cores, int(memory // grader_cli.MIB_PER_RUN)))
+    return grader_cli.default_jobs(grader_cli.CORES, grader_cli.available_mib(), RUNS_PER_CORE)
 
 
 def grade(course: Course, subs: Sequence[str], out: str, jobs: Optional[int]) -> Tuple[int, str]:
